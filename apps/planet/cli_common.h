@@ -1,0 +1,42 @@
+// Pieces shared by the subcommands of `planet`: global options, opening the Vulkan context,
+// and the exit codes.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "vk/context.h"
+
+namespace planet::cli {
+
+// Exit codes: 0 success, 1 failure (error, validation message, or out-of-tolerance result),
+// 2 bad command line or input.
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+
+struct GlobalOptions {
+  std::string device;       // --device NAME-SUBSTRING (else PLANET_DEVICE)
+  bool validation = false;  // --validation (else PLANET_VALIDATION=1)
+};
+
+// A Vulkan context chosen by the global options and the environment.
+std::unique_ptr<vk::Context> openContext(const GlobalOptions& options);
+
+// With validation on, any validation message turns the run into a failure: prints one line
+// and returns kExitFailure; else returns `exitCode`.
+int finishWithValidation(const vk::Context& context, int exitCode);
+
+// A bad value the user gave (flag or input line): printed as one line, exit code 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Registration of each subcommand; the callback runs the command and stores its exit code.
+void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+
+}  // namespace planet::cli

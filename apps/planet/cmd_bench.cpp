@@ -1,0 +1,62 @@
+// planet bench noise: throughput of the GPU noise against the CPU reference and libnoise.
+#include <unistd.h>
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "core/file.h"
+#include "noise/bench.h"
+#include "noise/noise_settings.h"
+
+namespace planet::cli {
+namespace {
+
+constexpr size_t kMaxBenchPoints = 50'000'000;
+
+struct BenchNoiseCommand {
+  noise::NoiseBenchOptions options;
+  std::string json;
+};
+
+int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
+  const noise::NoiseBenchOptions& o = cmd.options;
+  if (o.points < 1 || o.points > kMaxBenchPoints)
+    throw UsageError(fmt::format("--points must be in 1..{}, got {}", kMaxBenchPoints, o.points));
+  if (o.octaves < noise::kMinOctaves || o.octaves > noise::kMaxOctaves)
+    throw UsageError(
+        fmt::format("--octaves must be in {}..{}, got {}", noise::kMinOctaves, noise::kMaxOctaves, o.octaves));
+  if (o.repeats < 5 || o.repeats > 1000)
+    throw UsageError(fmt::format("--repeats must be in 5..1000, got {}", o.repeats));
+  auto context = openContext(global);
+  const bool interactive = ::isatty(STDERR_FILENO);
+  noise::NoiseBenchReport report = noise::runNoiseBench(*context, o, [&](const std::string& method) {
+    std::fprintf(stderr, interactive ? "\rmeasuring %-16s" : "measuring %s\n", method.c_str());
+  });
+  if (interactive) std::fprintf(stderr, "\n");
+  std::fputs(report.table().c_str(), stdout);
+  std::fflush(stdout);
+  if (!cmd.json.empty()) writeFileAtomic(cmd.json, report.toJson().dump(2) + "\n");
+  return finishWithValidation(*context, 0);
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks (print medians and spreads with the device name)");
+  bench->require_subcommand(0, 1);
+  auto cmd = std::make_shared<BenchNoiseCommand>();
+  CLI::App* sub = bench->add_subcommand(
+      "noise",
+      "Point-octave evaluations per second: GPU (fast and reference hash), CPU reference on 1 and all "
+      "threads, libnoise Perlin and RidgedMulti, on the same points");
+  sub->add_option("--points", cmd->options.points, "Points per run")->capture_default_str();
+  sub->add_option("--octaves", cmd->options.octaves, "fBm octaves")->capture_default_str();
+  sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")
+      ->capture_default_str();
+  sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
+  sub->callback([&global, &exitCode, cmd] { exitCode = runBenchNoise(global, *cmd); });
+}
+
+}  // namespace planet::cli

@@ -1,0 +1,83 @@
+// planet noise: evaluates one noise function at points read from stdin.
+#include <cstdio>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "core/error.h"
+#include "noise/noise_cpu.h"
+#include "noise/noise_gpu.h"
+#include "noise/point_reader.h"
+
+namespace planet::cli {
+namespace {
+
+struct NoiseCommand {
+  std::string type;
+  std::string hash = "fast";
+  std::string backend = "cpu";
+  noise::NoiseSettings settings;
+  double offset = 0.0;
+  double gain = 0.0;
+};
+
+int runNoise(const GlobalOptions& global, NoiseCommand& cmd, const CLI::App& sub) {
+  noise::NoiseSettings& s = cmd.settings;
+  std::vector<glm::vec3> points;
+  try {
+    s.type = noise::parseNoiseType(cmd.type);
+    s.hash = noise::parseNoiseHash(cmd.hash);
+    if (sub.count("--offset")) s.offset = cmd.offset;
+    if (sub.count("--gain")) s.gain = cmd.gain;
+    noise::validateNoiseSettings(s);
+    if (cmd.backend != "cpu" && cmd.backend != "gpu")
+      throw Error("unknown backend '" + cmd.backend + "' (expected cpu or gpu)");
+    points = noise::readPoints(std::cin);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+
+  std::vector<float> values(points.size());
+  int exitCode = 0;
+  if (!points.empty()) {
+    if (cmd.backend == "gpu") {
+      auto context = openContext(global);
+      {
+        noise::GpuNoise gpu(*context);
+        gpu.evaluate(s, points, values);
+      }
+      exitCode = finishWithValidation(*context, 0);
+    } else {
+      noise::evaluateCpu(s, points, values, 0);
+    }
+  }
+  fmt::memory_buffer out;
+  for (float v : values) fmt::format_to(std::back_inserter(out), "{:.9g}\n", v);  // as printf %.9g
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return exitCode;
+}
+
+}  // namespace
+
+void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+  auto cmd = std::make_shared<NoiseCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "noise", "Evaluate a noise function at points 'x y z' read from stdin, one value per line (%.9g)");
+  sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade")->required();
+  sub->add_option("--octaves", cmd->settings.octaves, "Octaves, 1..32")->capture_default_str();
+  sub->add_option("--lacunarity", cmd->settings.lacunarity, "Frequency ratio between octaves, in (1, 8]")
+      ->capture_default_str();
+  sub->add_option("--H", cmd->settings.H, "Octave i is weighted by lacunarity^(-i*H), in [0, 4]")
+      ->capture_default_str();
+  sub->add_option("--offset", cmd->offset,
+                  "Offset of ridged (default 1), hybrid (0.7), hetero (0.7) and cascade (0.8)");
+  sub->add_option("--gain", cmd->gain, "Ridged feedback gain (default 2)");
+  sub->add_option("--seed", cmd->settings.seed, "Seed, 0..4294967295")->capture_default_str();
+  sub->add_option("--hash", cmd->hash, "Lattice hash: fast (ALU only) | reference (Perlin's table)")
+      ->capture_default_str();
+  sub->add_option("--backend", cmd->backend, "cpu (reference) | gpu (compute shader)")->capture_default_str();
+  sub->callback([&global, &exitCode, cmd, sub] { exitCode = runNoise(global, *cmd, *sub); });
+}
+
+}  // namespace planet::cli

@@ -1,0 +1,46 @@
+// `planet bench noise`: octave evaluations per second of the GPU compute path (both hashes),
+// the CPU reference (one thread, all threads) and libnoise, on the same points in one run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace planet::vk {
+class Context;
+}
+
+namespace planet::noise {
+
+struct NoiseBenchOptions {
+  size_t points = 1u << 20;
+  int octaves = 8;
+  int repeats = 7;  // timed runs after one warm-up run (at least 5)
+};
+
+struct NoiseBenchResult {
+  std::string method;  // gpu_fast, gpu_reference, cpu_1, cpu_all, libnoise_perlin, libnoise_ridged
+  int octaves = 0;
+  double medianMevalsPerS = 0.0;  // million point-octave evaluations per second
+  double minMevalsPerS = 0.0;
+  double maxMevalsPerS = 0.0;
+};
+
+struct NoiseBenchReport {
+  std::string device;
+  std::string driver;
+  size_t points = 0;
+  unsigned cpuThreads = 0;
+  std::vector<NoiseBenchResult> results;
+  double rate(const std::string& method) const;  // median, 0 if absent
+  nlohmann::json toJson() const;
+  std::string table() const;
+};
+
+NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& options,
+                               const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace planet::noise

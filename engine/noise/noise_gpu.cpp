@@ -1,0 +1,113 @@
+#include "noise/noise_gpu.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+#include "noise/permutation.h"
+#include "spv/noise_eval.comp.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace planet::noise {
+namespace {
+
+constexpr uint32_t kBufferCount = 3;  // points, values, permutation (shaders/shared/noise_params.h)
+
+}  // namespace
+
+GpuNoise::GpuNoise(vk::Context& context) : context_(context) {
+  static_assert(gpu::kNoiseBindingPoints == 0 && gpu::kNoiseBindingValues == 1 && gpu::kNoiseBindingPermutation == 2);
+  setSource_ = vk::createComputePipeline(context_, kSpv_noise_eval_comp, kBufferCount, sizeof(gpu::NoiseParams), {}, 1);
+  timer_.create(context_, 4);
+  permutation_ = vk::createBuffer(context_, sizeof(PermutationTable), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  vk::MemoryUsage::DeviceLocal);
+}
+
+GpuNoise::~GpuNoise() {
+  vk::destroyBuffer(context_, points_);
+  vk::destroyBuffer(context_, values_);
+  vk::destroyBuffer(context_, permutation_);
+  timer_.destroy(context_);
+  for (auto& [key, pipeline] : pipelines_) vk::destroyComputePipeline(context_, pipeline);
+  vk::destroyComputePipeline(context_, setSource_);
+}
+
+const vk::ComputePipeline& GpuNoise::pipelineFor(NoiseType type, NoiseHash hash) {
+  std::pair<uint32_t, uint32_t> key{uint32_t(type), uint32_t(hash)};
+  auto found = pipelines_.find(key);
+  if (found != pipelines_.end()) return found->second;
+  const uint32_t specialization[] = {key.first, key.second};
+  return pipelines_[key] = vk::createComputePipeline(context_, kSpv_noise_eval_comp, kBufferCount,
+                                                     sizeof(gpu::NoiseParams), specialization, 1);
+}
+
+void GpuNoise::setPoints(std::span<const glm::vec3> points) {
+  if (points.empty()) throw Error("no points to evaluate");
+  if (points.size() > capacity_) {
+    vk::destroyBuffer(context_, points_);
+    vk::destroyBuffer(context_, values_);
+    capacity_ = 0;
+    points_ = vk::createBuffer(context_, points.size() * sizeof(glm::vec3), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               vk::MemoryUsage::DeviceLocal);
+    values_ = vk::createBuffer(context_, points.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               vk::MemoryUsage::DeviceLocal);
+    capacity_ = points.size();
+    VK_CHECK(vkResetDescriptorPool(context_.device, setSource_.descriptorPool, 0));
+    const vk::Buffer* buffers[kBufferCount] = {&points_, &values_, &permutation_};
+    set_ = vk::allocateStorageSet(context_, setSource_, buffers);
+  }
+  vk::uploadBuffer(context_, points_, points.data(), points.size_bytes());
+  count_ = points.size();
+}
+
+void GpuNoise::uploadPermutation(uint32_t seed) {
+  if (permutationSeed_ == int64_t(seed)) return;
+  const PermutationTable& table = permutationTable(seed);
+  vk::uploadBuffer(context_, permutation_, table.data(), sizeof(table));
+  permutationSeed_ = seed;
+}
+
+double GpuNoise::dispatch(const NoiseSettings& settings) {
+  if (count_ == 0) throw Error("GpuNoise::dispatch before setPoints");
+  gpu::NoiseParams params = toNoiseParams(settings);
+  if (settings.hash == NoiseHash::Reference)
+    uploadPermutation(settings.seed);
+  else if (permutationSeed_ < 0)
+    uploadPermutation(0);  // the fast hash never reads the table, but the binding must be valid
+  params.count = uint32_t(count_);
+  const vk::ComputePipeline& pipeline = pipelineFor(settings.type, settings.hash);
+
+  const uint32_t maxGroups = std::min<uint32_t>(context_.properties.limits.maxComputeWorkGroupCount[0], 65535u);
+  const size_t pointsPerDispatch = size_t(maxGroups) * gpu::kNoiseWorkgroupSize;
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
+    timer_.reset(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &set_, 0, nullptr);
+    timer_.begin(cmd, "noise");
+    for (size_t first = 0; first < count_; first += pointsPerDispatch) {
+      params.firstIndex = uint32_t(first);
+      size_t n = std::min(pointsPerDispatch, count_ - first);
+      vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
+      vkCmdDispatch(cmd, uint32_t((n + gpu::kNoiseWorkgroupSize - 1) / gpu::kNoiseWorkgroupSize), 1, 1);
+    }
+    timer_.end(cmd);
+    // The values are copied out by a later transfer (readValues).
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  });
+  return timer_.results(context_).front().milliseconds;
+}
+
+void GpuNoise::readValues(std::span<float> out) {
+  if (out.size() < count_) throw Error("GpuNoise::readValues: output span smaller than the point count");
+  vk::readbackBuffer(context_, values_, out.data(), count_ * sizeof(float));
+}
+
+void GpuNoise::evaluate(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out) {
+  setPoints(points);
+  dispatch(settings);
+  readValues(out);
+}
+
+}  // namespace planet::noise

@@ -1,0 +1,44 @@
+// Buffers: a VkBuffer with its sub-allocation, plus staged upload and readback.
+#pragma once
+
+#include <cstddef>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/allocator.h"
+
+namespace planet::vk {
+
+class Context;
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  Allocation allocation;
+  VkDeviceSize size = 0;
+  // Persistently mapped pointer for Upload/Readback buffers, nullptr for DeviceLocal ones
+  // (unless the device-local memory happens to be host-visible, as on CPU devices).
+  void* mapped() const { return allocation.mapped; }
+};
+
+Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory);
+void destroyBuffer(Context& context, Buffer& buffer);
+
+// Owns a temporary buffer (staging, scratch) and destroys it when leaving scope, also when an
+// exception passes through.
+struct ScopedBuffer {
+  Context& context;
+  Buffer buffer;
+  ScopedBuffer(Context& ctx, Buffer b) : context(ctx), buffer(b) {}
+  ScopedBuffer(const ScopedBuffer&) = delete;
+  ScopedBuffer& operator=(const ScopedBuffer&) = delete;
+  ~ScopedBuffer() { destroyBuffer(context, buffer); }
+};
+
+// Copies `bytes` from host memory into the buffer at `offset`: directly when the buffer is
+// mapped, else through a temporary staging buffer and a transfer (blocking).
+void uploadBuffer(Context& context, Buffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+
+// Copies `bytes` at `offset` of the buffer back to host memory (blocking, staged if needed).
+void readbackBuffer(Context& context, const Buffer& buffer, void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+
+}  // namespace planet::vk

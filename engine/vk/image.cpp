@@ -1,0 +1,139 @@
+#include "vk/image.h"
+
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "vk/buffer.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace planet::vk {
+
+uint32_t formatTexelSize(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8_UNORM: return 1;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw Error("unsupported image format " + std::to_string(int(format)));
+  }
+}
+
+Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage) {
+  if (extent.width == 0 || extent.height == 0) throw Error("cannot create an image of size 0");
+  Image image;
+  image.format = format;
+  image.extent = extent;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {extent.width, extent.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VK_CHECK(vkCreateImage(context.device, &info, nullptr, &image.image));
+  try {
+    image.allocation = context.allocator.allocateForImage(image.image, MemoryUsage::DeviceLocal, ResourceKind::Optimal);
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image.image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    bool depth = format == VK_FORMAT_D32_SFLOAT;
+    viewInfo.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
+                                 1, 0, 1};
+    VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.view));
+  } catch (...) {
+    destroyImage(context, image);
+    throw;
+  }
+  return image;
+}
+
+void destroyImage(Context& context, Image& image) {
+  if (image.view) vkDestroyImageView(context.device, image.view, nullptr);
+  if (image.image) vkDestroyImage(context.device, image.image, nullptr);
+  context.allocator.free(image.allocation);
+  image = Image{};
+}
+
+void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                     VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = srcStage;
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstStageMask = dstStage;
+  barrier.dstAccessMask = dstAccess;
+  barrier.oldLayout = image.layout;
+  barrier.newLayout = newLayout;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image.image;
+  bool depth = image.format == VK_FORMAT_D32_SFLOAT;
+  barrier.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1,
+                              0, 1};
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dep);
+  image.layout = newLayout;
+}
+
+static VkBufferImageCopy fullCopy(const Image& image) {
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.extent.width, image.extent.height, 1};
+  return region;
+}
+
+void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout) {
+  size_t expected = size_t(image.extent.width) * image.extent.height * formatTexelSize(image.format);
+  if (bytes != expected)
+    throw Error("image upload of " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected));
+  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
+  std::memcpy(staging.buffer.mapped(), texels, bytes);
+  context.allocator.flush(staging.buffer.allocation);
+  submitAndWait(context, [&](VkCommandBuffer cmd) {
+    // Previous contents are discarded; the copy waits for nothing but earlier transfers.
+    image.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                    VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region = fullCopy(image);
+    vkCmdCopyBufferToImage(cmd, staging.buffer.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    // Any later stage may read the image in its final layout.
+    transitionImage(cmd, image, finalLayout, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+  });
+}
+
+std::vector<uint8_t> readbackImage(Context& context, Image& image) {
+  size_t bytes = size_t(image.extent.width) * image.extent.height * formatTexelSize(image.format);
+  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
+  std::vector<uint8_t> texels(bytes);
+  submitAndWait(context, [&](VkCommandBuffer cmd) {
+    // Whatever wrote the image last must finish before the copy reads it.
+    transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                    VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region = fullCopy(image);
+    vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer.buffer, 1, &region);
+    // The host reads the staging buffer after the fence.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                  VK_ACCESS_2_HOST_READ_BIT);
+  });
+  context.allocator.invalidate(staging.buffer.allocation);
+  std::memcpy(texels.data(), staging.buffer.mapped(), bytes);
+  return texels;
+}
+
+}  // namespace planet::vk

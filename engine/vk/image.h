@@ -1,0 +1,40 @@
+// 2D images: creation with a view, layout transitions, staged upload and readback.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/allocator.h"
+
+namespace planet::vk {
+
+class Context;
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  Allocation allocation;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{0, 0};
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
+};
+
+// Bytes per texel of the colour formats the engine uses; throws for others.
+uint32_t formatTexelSize(VkFormat format);
+
+Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage);
+void destroyImage(Context& context, Image& image);
+
+// Records a layout transition of the whole image with a full barrier between the given stages.
+void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
+                     VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+// Fills the image with tightly packed texels and leaves it in `finalLayout` (blocking).
+void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout);
+
+// Reads every texel back, tightly packed, and leaves the image in TRANSFER_SRC_OPTIMAL (blocking).
+std::vector<uint8_t> readbackImage(Context& context, Image& image);
+
+}  // namespace planet::vk

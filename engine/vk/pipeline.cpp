@@ -1,0 +1,104 @@
+#include "vk/pipeline.h"
+
+#include <vector>
+
+#include "core/error.h"
+#include "vk/buffer.h"
+#include "vk/context.h"
+
+namespace planet::vk {
+
+VkShaderModule createShaderModule(Context& context, std::span<const uint32_t> spirv) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spirv.size_bytes();
+  info.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(context.device, &info, nullptr, &module));
+  return module;
+}
+
+ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv, uint32_t storageBufferCount,
+                                      uint32_t pushConstantSize, std::span<const uint32_t> specialization,
+                                      uint32_t maxSets) {
+  ComputePipeline result;
+  result.pushConstantSize = pushConstantSize;
+  try {
+    std::vector<VkDescriptorSetLayoutBinding> bindings(storageBufferCount);
+    for (uint32_t i = 0; i < storageBufferCount; ++i)
+      bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = storageBufferCount;
+    setInfo.pBindings = bindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(context.device, &setInfo, nullptr, &result.setLayout));
+
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &result.setLayout;
+    layoutInfo.pushConstantRangeCount = pushConstantSize ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    VK_CHECK(vkCreatePipelineLayout(context.device, &layoutInfo, nullptr, &result.layout));
+
+    std::vector<VkSpecializationMapEntry> entries(specialization.size());
+    for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)};
+    VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
+                                  specialization.data()};
+
+    VkShaderModule module = createShaderModule(context, spirv);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specInfo;
+    info.layout = result.layout;
+    VkResult created = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &result.pipeline);
+    vkDestroyShaderModule(context.device, module, nullptr);
+    VK_CHECK(created);
+
+    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storageBufferCount * maxSets};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = maxSets;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    VK_CHECK(vkCreateDescriptorPool(context.device, &poolInfo, nullptr, &result.descriptorPool));
+  } catch (...) {
+    destroyComputePipeline(context, result);
+    throw;
+  }
+  return result;
+}
+
+void destroyComputePipeline(Context& context, ComputePipeline& pipeline) {
+  if (pipeline.descriptorPool) vkDestroyDescriptorPool(context.device, pipeline.descriptorPool, nullptr);
+  if (pipeline.pipeline) vkDestroyPipeline(context.device, pipeline.pipeline, nullptr);
+  if (pipeline.layout) vkDestroyPipelineLayout(context.device, pipeline.layout, nullptr);
+  if (pipeline.setLayout) vkDestroyDescriptorSetLayout(context.device, pipeline.setLayout, nullptr);
+  pipeline = ComputePipeline{};
+}
+
+VkDescriptorSet allocateStorageSet(Context& context, const ComputePipeline& pipeline,
+                                   std::span<const Buffer* const> buffers) {
+  VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  info.descriptorPool = pipeline.descriptorPool;
+  info.descriptorSetCount = 1;
+  info.pSetLayouts = &pipeline.setLayout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateDescriptorSets(context.device, &info, &set));
+
+  std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set;
+    writes[i].dstBinding = uint32_t(i);
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(context.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+  return set;
+}
+
+}  // namespace planet::vk

@@ -1,0 +1,60 @@
+#include "vk/timer.h"
+
+#include "core/error.h"
+#include "vk/context.h"
+
+namespace planet::vk {
+
+void GpuTimer::create(Context& context, uint32_t maxScopes) {
+  if (context.timestampValidBits == 0 || context.properties.limits.timestampPeriod <= 0.0f)
+    throw Error("device '" + context.info.name + "' does not support timestamp queries");
+  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  info.queryCount = maxScopes * 2;
+  VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &pool_));
+  maxScopes_ = maxScopes;
+  periodNs_ = context.properties.limits.timestampPeriod;
+  validMask_ = context.timestampValidBits >= 64 ? ~0ull : ((1ull << context.timestampValidBits) - 1);
+}
+
+void GpuTimer::destroy(Context& context) {
+  if (pool_) vkDestroyQueryPool(context.device, pool_, nullptr);
+  pool_ = VK_NULL_HANDLE;
+}
+
+void GpuTimer::reset(VkCommandBuffer cmd) {
+  vkCmdResetQueryPool(cmd, pool_, 0, maxScopes_ * 2);
+  names_.clear();
+  open_ = UINT32_MAX;
+}
+
+void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
+  if (open_ != UINT32_MAX) throw Error("GPU timer scope '" + name + "' begun inside '" + names_[open_] + "'");
+  if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
+  open_ = uint32_t(names_.size());
+  names_.push_back(name);
+  // Top of pipe: the scope starts when its commands could first start.
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_, open_ * 2);
+}
+
+void GpuTimer::end(VkCommandBuffer cmd) {
+  if (open_ == UINT32_MAX) throw Error("GPU timer end() without begin()");
+  // Bottom of pipe: after every command recorded in the scope has finished.
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_, open_ * 2 + 1);
+  open_ = UINT32_MAX;
+}
+
+std::vector<GpuTiming> GpuTimer::results(Context& context) const {
+  std::vector<GpuTiming> timings;
+  if (names_.empty()) return timings;
+  std::vector<uint64_t> stamps(names_.size() * 2);
+  VK_CHECK(vkGetQueryPoolResults(context.device, pool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
+                                 stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  for (size_t i = 0; i < names_.size(); ++i) {
+    uint64_t ticks = (stamps[2 * i + 1] - stamps[2 * i]) & validMask_;
+    timings.push_back({names_[i], double(ticks) * periodNs_ * 1e-6});
+  }
+  return timings;
+}
+
+}  // namespace planet::vk

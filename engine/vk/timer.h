@@ -1,0 +1,44 @@
+// Named GPU timing scopes from timestamp queries: timer.begin(cmd, "noise") ... timer.end(cmd),
+// read after the submission's fence with timer.results().
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace planet::vk {
+
+class Context;
+
+struct GpuTiming {
+  std::string name;
+  double milliseconds = 0.0;
+};
+
+class GpuTimer {
+ public:
+  // Room for `maxScopes` scopes per recording. Throws if the device has no timestamps.
+  void create(Context& context, uint32_t maxScopes = 32);
+  void destroy(Context& context);
+
+  // Resets the queries; record once at the start of each command buffer that uses the timer.
+  void reset(VkCommandBuffer cmd);
+  void begin(VkCommandBuffer cmd, const std::string& name);
+  void end(VkCommandBuffer cmd);
+
+  // Durations of the scopes recorded since reset(), in recording order. Call only after the
+  // command buffer's fence has signalled.
+  std::vector<GpuTiming> results(Context& context) const;
+
+ private:
+  VkQueryPool pool_ = VK_NULL_HANDLE;
+  uint32_t maxScopes_ = 0;
+  double periodNs_ = 1.0;
+  uint64_t validMask_ = ~0ull;
+  std::vector<std::string> names_;
+  uint32_t open_ = UINT32_MAX;  // index of the scope begun but not ended
+};
+
+}  // namespace planet::vk

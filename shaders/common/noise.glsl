@@ -1,0 +1,246 @@
+// 3D simplex noise and its fractals, written once in the common subset of GLSL 4.50 and C++.
+//
+// This file is compiled twice: as GLSL by glslang (included by compute shaders) and as C++
+// inside engine/noise/noise_kernel.h, which is the CPU reference (float and double). Rules
+// (STYLE.md): `real` for every floating-point value, .x/.y/.z instead of swizzles, an `f`
+// suffix on every literal, explicit conversions, unsigned integer hashing only, no
+// sin/cos/exp/pow, IN()/OUT() for reference parameters. The includer provides `real`, `vec3`,
+// `uvec3`, NOISE_CONST, PERM(i) (the reference permutation table) and the scalar builtins.
+#ifndef PLANET_COMMON_NOISE_GLSL
+#define PLANET_COMMON_NOISE_GLSL
+
+#ifndef __cplusplus
+#define real float
+#define IN(T) in T
+#define OUT(T) out T
+#define NOISE_CONST const
+// No multiply-add contraction or reassociation of these values (SPIR-V NoContraction): the
+// C++ side is compiled with -ffp-contract=off and both must round identically.
+#define PRECISE precise
+#endif
+
+// Simplex skew and unskew factors for 3D (Gustavson 2005): F3 = 1/3, G3 = 1/6.
+NOISE_CONST real kSkew3 = real(1.0f) / real(3.0f);
+NOISE_CONST real kUnskew3 = real(1.0f) / real(6.0f);
+// Squared kernel radius: a corner contributes (0.6 - r^2)^4 (Gustavson 2005).
+NOISE_CONST real kKernelRadius2 = real(0.6f);
+// Final scale that maps the sum of four kernels to about [-1, 1] (Gustavson 2005).
+NOISE_CONST real kNoiseScale = real(32.0f);
+
+// Both hashes depend only on the lattice indices modulo 2^22 (the fast hash masks them, the
+// reference table repeats every 256), so the noise repeats every 3 * 2^22 units along each
+// axis. Coordinates are wrapped into [-P/2, P/2] of that period: it keeps float-to-int
+// conversions defined for any input, leaves every |x| < P/2 = 6.3e6 untouched (round-to-even
+// gives 0 there), and costs nothing in accuracy beyond, where a float has no fractional bits.
+NOISE_CONST uint kLatticeMask = 0x3fffffu;
+NOISE_CONST real kDomainPeriod = real(12582912.0f);
+NOISE_CONST real kInvDomainPeriod = real(1.0f) / real(12582912.0f);
+
+// Mixes a user seed into 32 well-spread bits (once per evaluation, on the CPU).
+// Finaliser constants: Chris Wellons' "lowbias32" integer hash.
+uint noiseSeedMix(uint seed) {
+  uint h = seed ^ 0x9e3779b9u;
+  h ^= h >> 16u;
+  h *= 0x7feb352du;
+  h ^= h >> 15u;
+  h *= 0x846ca68bu;
+  h ^= h >> 16u;
+  return h;
+}
+
+// Gradient index in [0, 12) of lattice point (i, j, k).
+uint latticeGradient(uint i, uint j, uint k, uint hashKind, uint seedMix) {
+  if (hashKind == kNoiseHashReference) {
+    // Perlin's nested permutation lookup, as in Gustavson's reference code.
+    return PERM((i & 255u) + PERM((j & 255u) + PERM(k & 255u))) % 12u;
+  }
+  // Fast: a different odd multiplier per axis makes neighbouring cells differ in many bits,
+  // then one multiply-xorshift round spreads them; pure ALU, no memory access.
+  uint h = seedMix + (i & kLatticeMask) * 0x8da6b343u + (j & kLatticeMask) * 0xd8163841u +
+           (k & kLatticeMask) * 0xcb1ab31fu;
+  h ^= h >> 15u;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12u;
+  h *= 0x297a2d39u;
+  h ^= h >> 15u;
+  // Top 16 bits scaled to [0, 12): unbiased enough and cheaper than a modulo.
+  return ((h >> 16u) * 12u) >> 16u;
+}
+
+// Dot product of gradient g with (x, y, z). The 12 gradients are the cube-edge midpoints in
+// Gustavson's order: (±1,±1,0) for g < 4, (±1,0,±1) for g < 8, (0,±1,±1) otherwise; bit 0
+// negates the first non-zero component, bit 1 the second. Selected arithmetically, no table.
+real gradientDot(uint g, real x, real y, real z) {
+  PRECISE real u = g < 8u ? x : y;
+  PRECISE real v = g < 4u ? y : z;
+  return ((g & 1u) != 0u ? -u : u) + ((g & 2u) != 0u ? -v : v);
+}
+
+// One corner's kernel: (0.6 - r^2)^4 * (gradient . offset), zero outside the radius.
+real cornerContribution(uint g, real x, real y, real z) {
+  PRECISE real t = kKernelRadius2 - x * x - y * y - z * z;
+  t = max(t, real(0.0f));
+  t = t * t;
+  return t * t * gradientDot(g, x, y, z);
+}
+
+real wrapDomain(real x) {
+  // The clamp only acts where float rounding left a huge remainder (|x| > 2^24 * P).
+  return clamp(x - kDomainPeriod * roundEven(x * kInvDomainPeriod), -kDomainPeriod, kDomainPeriod);
+}
+
+vec3 wrapPoint(vec3 p) { return vec3(wrapDomain(p.x), wrapDomain(p.y), wrapDomain(p.z)); }
+
+// 3D simplex noise N(p) in [-1, 1] (Gustavson 2005, "Simplex noise demystified").
+// `shift` is added to the lattice indices: with shift S = I + (I.x+I.y+I.z)/3 for an integer
+// vector I whose components sum to a multiple of 3, N(p; S) = N(p + I). The renderer uses this
+// to rebase far-away positions exactly (DESIGN.md, Earth-scale precision).
+// `p` must be wrapped (wrapPoint), so that every coordinate is at most 2^24 units from 0.
+real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
+  PRECISE real x = p.x;
+  PRECISE real y = p.y;
+  PRECISE real z = p.z;
+
+  // Skew into the cubic lattice and find the cell.
+  PRECISE real s = (x + y + z) * kSkew3;
+  int ci = int(floor(x + s));
+  int cj = int(floor(y + s));
+  int ck = int(floor(z + s));
+  // Unskew the cell origin back and take the offset from it.
+  PRECISE real t = real(ci + cj + ck) * kUnskew3;
+  PRECISE real x0 = x - (real(ci) - t);
+  PRECISE real y0 = y - (real(cj) - t);
+  PRECISE real z0 = z - (real(ck) - t);
+
+  // Which of the six simplices of the cube: rank the offset's components, with Gustavson's
+  // tie-breaking (>=) so the reference hash reproduces his values exactly.
+  bool xy = x0 >= y0;
+  bool yz = y0 >= z0;
+  bool xz = x0 >= z0;
+  uint i1 = uint(xy && xz);
+  uint j1 = uint(!xy && yz);
+  uint k1 = uint(!xz && !yz);
+  uint i2 = uint(xy || xz);
+  uint j2 = uint(!xy || yz);
+  uint k2 = uint(!(xz && yz));
+
+  PRECISE real x1 = x0 - real(i1) + kUnskew3;
+  PRECISE real y1 = y0 - real(j1) + kUnskew3;
+  PRECISE real z1 = z0 - real(k1) + kUnskew3;
+  PRECISE real x2 = x0 - real(i2) + real(2.0f) * kUnskew3;
+  PRECISE real y2 = y0 - real(j2) + real(2.0f) * kUnskew3;
+  PRECISE real z2 = z0 - real(k2) + real(2.0f) * kUnskew3;
+  PRECISE real x3 = x0 - real(1.0f) + real(3.0f) * kUnskew3;
+  PRECISE real y3 = y0 - real(1.0f) + real(3.0f) * kUnskew3;
+  PRECISE real z3 = z0 - real(1.0f) + real(3.0f) * kUnskew3;
+
+  uint i = uint(ci) + shift.x;
+  uint j = uint(cj) + shift.y;
+  uint k = uint(ck) + shift.z;
+  PRECISE real n0 = cornerContribution(latticeGradient(i, j, k, hashKind, seedMix), x0, y0, z0);
+  PRECISE real n1 = cornerContribution(latticeGradient(i + i1, j + j1, k + k1, hashKind, seedMix), x1, y1, z1);
+  PRECISE real n2 = cornerContribution(latticeGradient(i + i2, j + j2, k + k2, hashKind, seedMix), x2, y2, z2);
+  PRECISE real n3 = cornerContribution(latticeGradient(i + 1u, j + 1u, k + 1u, hashKind, seedMix), x3, y3, z3);
+  return kNoiseScale * (n0 + n1 + n2 + n3);
+}
+
+real simplexNoise(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
+  return simplexWrapped(wrapPoint(p), shift, hashKind, seedMix);
+}
+
+// The fractals below follow the formulas of issue 2 (Musgrave's definitions as given in
+// seed 002 §4.9-4.10), with p_i = p * L^i and w_i = L^(-i*H). p_i is kept wrapped into the
+// noise's period after each scaling (exact for integer L; otherwise a difference only where
+// |p_i| > 6.3e6 and a float cannot resolve a lattice cell anyway), so 32 octaves of any
+// finite point never overflow.
+
+// fBm: sum of N(p_i) * w_i.
+real fbmNoise(IN(NoiseParams) params, vec3 p) {
+  PRECISE real sum = real(0.0f);
+  PRECISE real w = real(1.0f);
+  vec3 q = wrapPoint(p);
+  for (uint i = 0u; i < params.octaves; ++i) {
+    sum += simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) * w;
+    q = wrapPoint(q * real(params.lacunarity));
+    w *= real(params.octaveWeight);
+  }
+  return sum;
+}
+
+// Ridged multifractal: s_0 = (offset - |N(p_0)|)^2; each next octave is weighted by the
+// previous one's signal times gain (clamped to [0, 1]), so ridges stay sharp and valleys smooth.
+real ridgedNoise(IN(NoiseParams) params, vec3 p) {
+  PRECISE real offset = real(params.offset);
+  vec3 q = wrapPoint(p);
+  PRECISE real signal = offset - abs(simplexWrapped(q, uvec3(0u), params.hash, params.seedMix));
+  signal = signal * signal;
+  PRECISE real result = signal;
+  PRECISE real w = real(1.0f);
+  for (uint i = 1u; i < params.octaves; ++i) {
+    q = wrapPoint(q * real(params.lacunarity));
+    w *= real(params.octaveWeight);
+    PRECISE real weight = clamp(signal * real(params.gain), real(0.0f), real(1.0f));
+    signal = offset - abs(simplexWrapped(q, uvec3(0u), params.hash, params.seedMix));
+    signal = signal * signal * weight;
+    result += signal * w;
+  }
+  return result;
+}
+
+// Hybrid multifractal: smooth low areas, rough peaks; each octave is weighted by the running
+// product of the previous signals.
+real hybridNoise(IN(NoiseParams) params, vec3 p) {
+  PRECISE real offset = real(params.offset);
+  vec3 q = wrapPoint(p);
+  PRECISE real result = simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset;
+  PRECISE real weight = result;
+  PRECISE real w = real(1.0f);
+  for (uint i = 1u; i < params.octaves; ++i) {
+    q = wrapPoint(q * real(params.lacunarity));
+    w *= real(params.octaveWeight);
+    weight = clamp(weight, real(0.0f), real(1.0f));
+    PRECISE real signal = (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w;
+    result += weight * signal;
+    weight *= signal;
+  }
+  return result;
+}
+
+// Heterogeneous terrain: each octave is scaled by the value so far, so heights vary in
+// roughness with altitude.
+real heteroNoise(IN(NoiseParams) params, vec3 p) {
+  PRECISE real offset = real(params.offset);
+  vec3 q = wrapPoint(p);
+  PRECISE real value = offset + simplexWrapped(q, uvec3(0u), params.hash, params.seedMix);
+  PRECISE real w = real(1.0f);
+  for (uint i = 1u; i < params.octaves; ++i) {
+    q = wrapPoint(q * real(params.lacunarity));
+    w *= real(params.octaveWeight);
+    value += (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w * value;
+  }
+  return value;
+}
+
+// Multiplicative cascade: product of (N(p_i) + offset). Seed 002's amplitude division cancels
+// out, so H has no effect here.
+real cascadeNoise(IN(NoiseParams) params, vec3 p) {
+  PRECISE real value = real(1.0f);
+  vec3 q = wrapPoint(p);
+  for (uint i = 0u; i < params.octaves; ++i) {
+    value *= simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + real(params.offset);
+    q = wrapPoint(q * real(params.lacunarity));
+  }
+  return value;
+}
+
+// The noise of type params.type at p.
+real evaluateNoise(IN(NoiseParams) params, vec3 p) {
+  if (params.type == kNoiseFbm) return fbmNoise(params, p);
+  if (params.type == kNoiseRidged) return ridgedNoise(params, p);
+  if (params.type == kNoiseHybrid) return hybridNoise(params, p);
+  if (params.type == kNoiseHetero) return heteroNoise(params, p);
+  if (params.type == kNoiseCascade) return cascadeNoise(params, p);
+  return simplexNoise(p, uvec3(0u), params.hash, params.seedMix);
+}
+
+#endif

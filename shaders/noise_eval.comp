@@ -1,0 +1,34 @@
+#version 450
+// Evaluates the noise described by the push constants at a buffer of points (planet noise,
+// planet validate, planet bench noise). One invocation per point.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/noise_params.h"
+
+layout(local_size_x = kNoiseWorkgroupSize) in;
+
+layout(push_constant) uniform Push { NoiseParams params; };
+
+// The noise type and hash are also specialization constants: the host creates one pipeline
+// per (type, hash) pair, so the shader compiler removes the branches on them. Lavapipe
+// executes both sides of even a uniform branch under a mask, which cost 4x in throughput.
+// Everything else (octaves, lacunarity, H, offset, gain, seed) stays a push constant.
+layout(constant_id = 0) const uint kSpecNoiseType = 1u;
+layout(constant_id = 1) const uint kSpecNoiseHash = 0u;
+
+layout(std430, set = 0, binding = kNoiseBindingPoints) readonly buffer Points { float points[]; };
+layout(std430, set = 0, binding = kNoiseBindingValues) writeonly buffer Values { float values[]; };
+layout(std430, set = 0, binding = kNoiseBindingPermutation) readonly buffer Permutation { uint permutation[]; };
+
+#define PERM(i) permutation[i]
+#include "common/noise.glsl"
+
+void main() {
+  uint index = params.firstIndex + gl_GlobalInvocationID.x;
+  if (index >= params.count) return;
+  vec3 p = vec3(points[3u * index], points[3u * index + 1u], points[3u * index + 2u]);
+  NoiseParams specialized = params;
+  specialized.type = kSpecNoiseType;
+  specialized.hash = kSpecNoiseHash;
+  values[index] = evaluateNoise(specialized, p);
+}

@@ -1,0 +1,50 @@
+// Parameters of one noise evaluation, shared by the compute shader (push constants) and the
+// CPU reference. The meaning of every field is in shaders/common/noise.glsl.
+#ifndef PLANET_SHARED_NOISE_PARAMS_H
+#define PLANET_SHARED_NOISE_PARAMS_H
+
+#include "shared/gpu_types.h"
+
+GPU_NAMESPACE_BEGIN
+
+// Noise types (NoiseParams.type).
+GPU_CONST uint kNoiseSimplex = 0u;  // one octave of N(p)
+GPU_CONST uint kNoiseFbm = 1u;
+GPU_CONST uint kNoiseRidged = 2u;
+GPU_CONST uint kNoiseHybrid = 3u;
+GPU_CONST uint kNoiseHetero = 4u;
+GPU_CONST uint kNoiseCascade = 5u;
+GPU_CONST uint kNoiseTypeCount = 6u;
+
+// Lattice hashes (NoiseParams.hash).
+GPU_CONST uint kNoiseHashFast = 0u;       // ALU-only integer hash of (i, j, k, seed)
+GPU_CONST uint kNoiseHashReference = 1u;  // Perlin's permutation table (seed-permuted)
+
+GPU_CONST uint kNoiseMaxOctaves = 32u;
+GPU_CONST uint kNoisePermutationSize = 512u;  // 256 entries, stored twice (no index wrap)
+
+// Bindings of the point-evaluation compute shader (set 0).
+GPU_CONST uint kNoiseBindingPoints = 0u;       // float[3 * count], x y z packed
+GPU_CONST uint kNoiseBindingValues = 1u;       // float[count]
+GPU_CONST uint kNoiseBindingPermutation = 2u;  // uint[kNoisePermutationSize]
+GPU_CONST uint kNoiseWorkgroupSize = 256u;
+
+struct NoiseParams {
+  uint type;           // kNoise*
+  uint octaves;        // 1..kNoiseMaxOctaves
+  uint hash;           // kNoiseHash*
+  uint seedMix;        // the seed after noiseSeedMix(), so the fast hash needs no per-point setup
+  float lacunarity;    // L: octave i samples p * L^i
+  float octaveWeight;  // L^-H: octave i is weighted by octaveWeight^i (pow computed once, on the CPU)
+  float offset;        // ridged / hybrid / hetero / cascade offset
+  float gain;          // ridged feedback gain
+  uint count;          // points to evaluate (GPU only)
+  uint firstIndex;     // index of the first point of this dispatch (GPU only)
+  uint pad1;
+  uint pad2;
+};
+GPU_ASSERT_SIZE(NoiseParams, 48)
+
+GPU_NAMESPACE_END
+
+#endif

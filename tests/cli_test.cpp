@@ -1,0 +1,177 @@
+// `planet` as a user runs it: values on stdout, one-line errors naming the bad value,
+// non-zero exit codes, JSON outputs that parse, and no partial output files.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::filesystem::path tempDir() {
+  static std::filesystem::path dir = [] {
+    std::filesystem::path d = std::filesystem::temp_directory_path() / ("planet_cli_test_" + std::to_string(getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+// Runs `planet ARGS` with `input` on stdin.
+CommandResult planet(const std::string& args, const std::string& input = "") {
+  std::filesystem::path dir = tempDir();
+  std::ofstream(dir / "in") << input;
+  std::string command = std::string(PLANET_EXE) + " " + args + " < " + (dir / "in").string() + " > " +
+                        (dir / "out").string() + " 2> " + (dir / "err").string();
+  int status = std::system(command.c_str());
+  CommandResult run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = readFile(dir / "out");
+  run.err = readFile(dir / "err");
+  return run;
+}
+
+size_t lineCount(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
+
+bool noDevice(const CommandResult& run) { return run.err.find("no Vulkan") != std::string::npos; }
+
+TEST(Cli, HelpListsTheSubcommands) {
+  CommandResult run = planet("--help");
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* cmd : {"noise", "validate", "bench"}) EXPECT_NE(run.out.find(cmd), std::string::npos) << cmd;
+  CommandResult sub = planet("noise --help");
+  EXPECT_EQ(sub.exitCode, 0);
+  EXPECT_NE(sub.out.find("--lacunarity"), std::string::npos);
+}
+
+TEST(Cli, NoisePrintsOneValuePerPointWithNineDigits) {
+  // Golden values from tools/golden/simplex_reference.py (see noise_golden_test.cpp).
+  CommandResult run = planet("noise --type simplex --hash reference", "0.1 0.2 0.3\n1.5,-2.25,3.75\n# comment\n\n");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  std::istringstream values(run.out);
+  double a, b;
+  values >> a >> b;
+  EXPECT_NEAR(a, 0.63589036106093655, 2e-6);
+  EXPECT_NEAR(b, -0.56940520833333241, 2e-6);
+  EXPECT_EQ(lineCount(run.out), 2u);
+  // %.9g: nine significant digits, enough to round-trip a float.
+  std::string first = run.out.substr(0, run.out.find('\n'));
+  EXPECT_EQ(first.substr(0, 2), "0.");
+  EXPECT_EQ(first.size(), 2u + 9u) << first;
+}
+
+TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
+  struct Case {
+    std::string args, input, mustContain;
+  } cases[] = {
+      {"noise --type fbm --octaves 0", "1 2 3\n", "octaves must be in 1..32, got 0"},
+      {"noise --type fbm --octaves 1000", "1 2 3\n", "got 1000"},
+      {"noise --type fbm --octaves many", "1 2 3\n", "many"},
+      {"noise --type perlin", "1 2 3\n", "'perlin'"},
+      {"noise --type fbm --lacunarity 1", "1 2 3\n", "lacunarity must be in (1, 8], got 1"},
+      {"noise --type fbm --H nan", "1 2 3\n", "H must be a finite number"},
+      {"noise --type fbm --hash slow", "1 2 3\n", "'slow'"},
+      {"noise --type fbm --backend tpu", "1 2 3\n", "'tpu'"},
+      {"noise --type fbm --seed -1", "1 2 3\n", "--seed"},
+      {"noise --type fbm", "1 2 3\n4 5\n", "line 2: expected 3 numbers"},
+      {"noise --type fbm", "1 2 zz\n", "line 1: 'zz' is not a number"},
+      {"noise --type fbm", std::string("\x7f\x45\x4c\x46\x02\x01\n", 7), "line 1:"},
+      {"noise", "1 2 3\n", "--type"},
+      {"noise --type fbm --frobnicate", "1 2 3\n", "--frobnicate"},
+      {"validate --points 0", "", "--points must be in 1..10000000, got 0"},
+      {"validate --points 1e12", "", "--points"},
+      {"bench noise --octaves 33", "", "--octaves must be in 1..32, got 33"},
+      {"bench noise --repeats 2", "", "--repeats must be in 5..1000, got 2"},
+      {"frobnicate", "", "frobnicate"},
+      {"", "", "a command is required"},
+      {"bench", "", "a command is required"},
+      {"bench frobnicate", "", "frobnicate"},
+  };
+  for (const Case& c : cases) {
+    CommandResult run = planet(c.args, c.input);
+    EXPECT_EQ(run.exitCode, 2) << c.args << "\n" << run.err;
+    EXPECT_EQ(lineCount(run.err), 1u) << c.args << "\n" << run.err;
+    EXPECT_NE(run.err.find(c.mustContain), std::string::npos) << c.args << "\n" << run.err;
+    EXPECT_EQ(run.out, "") << c.args << ": nothing may be printed on an error";
+  }
+}
+
+TEST(Cli, GpuBackendPrintsTheSameValuesAsTheCpuReference) {
+  std::string input;
+  for (int i = 0; i < 500; ++i) input += std::to_string(i * 0.37 - 90) + " " + std::to_string(i * 0.11) + ", 4.5\n";
+  CommandResult cpu = planet("noise --type ridged --octaves 12 --seed 5", input);
+  ASSERT_EQ(cpu.exitCode, 0) << cpu.err;
+  CommandResult gpu = planet("noise --type ridged --octaves 12 --seed 5 --backend gpu", input);
+  if (noDevice(gpu)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(gpu.exitCode, 0) << gpu.err;
+  EXPECT_EQ(lineCount(gpu.out), 500u);
+  EXPECT_EQ(gpu.out, cpu.out) << "lavapipe must agree bit for bit";
+}
+
+TEST(Cli, ValidatePassesAndWritesJson) {
+  std::filesystem::path json = tempDir() / "validate.json";
+  CommandResult run = planet("validate --points 2000 --json " + json.string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("device: "), std::string::npos);
+  EXPECT_NE(run.out.find("PASS"), std::string::npos);
+  nlohmann::json j = nlohmann::json::parse(readFile(json));
+  EXPECT_TRUE(j["pass"].get<bool>());
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
+  ASSERT_EQ(j["cases"].size(), 34u);  // 2 hashes x (5 fractals x 3 parameter sets + simplex x 2)
+  for (const auto& c : j["cases"]) {
+    EXPECT_EQ(c["points"].get<int>(), 2000);
+    EXPECT_EQ(c["fraction_identical"].get<double>(), 1.0) << c.dump();
+  }
+}
+
+TEST(Cli, BenchNoiseReportsEveryMethodInJson) {
+  std::filesystem::path json = tempDir() / "bench.json";
+  CommandResult run = planet("bench noise --points 20000 --octaves 4 --repeats 5 --json " + json.string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  nlohmann::json j = nlohmann::json::parse(readFile(json));
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
+  std::set<std::string> methods;
+  for (const auto& r : j["results"]) {
+    methods.insert(r["method"].get<std::string>());
+    EXPECT_EQ(r["octaves"].get<int>(), 4);
+    EXPECT_GT(r["min"].get<double>(), 0.0);
+    EXPECT_LE(r["min"].get<double>(), r["mevals_per_s"].get<double>());
+    EXPECT_LE(r["mevals_per_s"].get<double>(), r["max"].get<double>());
+  }
+  EXPECT_EQ(methods, (std::set<std::string>{"gpu_fast", "gpu_reference", "cpu_1", "cpu_all", "libnoise_perlin",
+                                            "libnoise_ridged"}));
+}
+
+TEST(Cli, UnwritableJsonPathFailsWithoutLeavingFiles) {
+  std::filesystem::path dir = tempDir() / "no-such-dir";
+  CommandResult run = planet("validate --points 10 --json " + (dir / "x.json").string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("cannot write"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+}  // namespace

@@ -1,0 +1,26 @@
+// Fixture for tests that need a Vulkan device: a context with validation (and synchronization
+// validation) on; the test fails if any validation message appears or an allocation leaks,
+// and is reported as skipped when the machine has no Vulkan device.
+#pragma once
+
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "vk/context.h"
+
+namespace planet::test {
+
+// A fresh validated context, or nullptr after GTEST_SKIP when no device exists.
+std::unique_ptr<vk::Context> createTestContext();
+
+class GpuTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  vk::Context& context() { return *context_; }
+
+  std::unique_ptr<vk::Context> context_;
+};
+
+}  // namespace planet::test

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages planet needs (only those missing), then configures and
+# builds it with a CMake preset (default: release; PLANET_PRESET=debug|asan for the others).
+# Installing needs root: run as root or with sudo; otherwise the script lists what is missing
+# and stops.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Compiler and build; Vulkan loader, lavapipe (Vulkan on the CPU) and the validation layers;
+# glslang for GLSL -> SPIR-V at build time; libraries; GoogleTest; libnoise (the peer noise
+# library `planet bench noise` compares against).
+packages=(
+  build-essential cmake ninja-build
+  libvulkan-dev mesa-vulkan-drivers
+  vulkan-validationlayers
+  glslang-tools spirv-tools
+  libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev
+  libnoise-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if ((${#missing[@]})); then
+  if [[ $EUID -ne 0 ]]; then
+    echo "planet setup: missing Debian packages: ${missing[*]}" >&2
+    echo "Installing them needs root. Run: sudo $0   (or: sudo apt-get install ${missing[*]})" >&2
+    exit 1
+  fi
+  echo "planet setup: installing ${missing[*]}"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+preset=${PLANET_PRESET:-release}
+echo "planet setup: configuring and building (preset $preset)"
+cmake --preset "$preset" >/dev/null
+cmake --build --preset "$preset"
