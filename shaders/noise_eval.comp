@@ -16,7 +16,7 @@ layout(push_constant) uniform Push { NoiseParams params; };
 layout(constant_id = 0) const uint kSpecNoiseType = 1u;
 layout(constant_id = 1) const uint kSpecNoiseHash = 0u;
 
-layout(std430, set = 0, binding = kNoiseBindingPoints) readonly buffer Points { float points[]; };
+layout(std430, set = 0, binding = kNoiseBindingPoints) readonly buffer Points { vec4 points[]; };
 layout(std430, set = 0, binding = kNoiseBindingValues) writeonly buffer Values { float values[]; };
 layout(std430, set = 0, binding = kNoiseBindingPermutation) readonly buffer Permutation { uint permutation[]; };
 
@@ -26,7 +26,7 @@ layout(std430, set = 0, binding = kNoiseBindingPermutation) readonly buffer Perm
 void main() {
   uint index = params.firstIndex + gl_GlobalInvocationID.x;
   if (index >= params.count) return;
-  vec3 p = vec3(points[3u * index], points[3u * index + 1u], points[3u * index + 2u]);
+  vec3 p = points[index].xyz;
   NoiseParams specialized = params;
   specialized.type = kSpecNoiseType;
   specialized.hash = kSpecNoiseHash;

@@ -28,13 +28,17 @@ NOISE_CONST real kKernelRadius2 = real(0.6f);
 NOISE_CONST real kNoiseScale = real(32.0f);
 
 // Both hashes depend only on the lattice indices modulo 2^22 (the fast hash masks them, the
-// reference table repeats every 256), so the noise repeats every 3 * 2^22 units along each
-// axis. Coordinates are wrapped into [-P/2, P/2] of that period: it keeps float-to-int
-// conversions defined for any input, leaves every |x| < P/2 = 6.3e6 untouched (round-to-even
-// gives 0 there), and costs nothing in accuracy beyond, where a float has no fractional bits.
+// reference table repeats every 256), so the noise repeats every P = 3 * 2^22 units along each
+// axis. Two bounds keep every float finite and every conversion defined, for any finite input:
+// - an input point is wrapped once into [-P/2, P/2] (exact, i.e. unchanged, for |x| < P/2), so
+//   32 octaves of lacunarity <= 8 stay below 1.3e35 and cannot overflow;
+// - lattice cells are clamped to +-2^29 before conversion to int. Beyond that an octave's
+//   kernels are all out of range and it contributes 0; a float that large cannot resolve a
+//   lattice cell anyway.
 NOISE_CONST uint kLatticeMask = 0x3fffffu;
 NOISE_CONST real kDomainPeriod = real(12582912.0f);
 NOISE_CONST real kInvDomainPeriod = real(1.0f) / real(12582912.0f);
+NOISE_CONST real kCellLimit = real(536870912.0f);
 
 // Mixes a user seed into 32 well-spread bits (once per evaluation, on the CPU).
 // Finaliser constants: Chris Wellons' "lowbias32" integer hash.
@@ -48,23 +52,32 @@ uint noiseSeedMix(uint seed) {
   return h;
 }
 
+// Reference hash: Perlin's nested permutation lookup, as in Gustavson's reference code.
+uint referenceGradient(uint i, uint j, uint k) {
+  return PERM((i & 255u) + PERM((j & 255u) + PERM(k & 255u))) % 12u;
+}
+
+// Fast hash, axis term: a different odd multiplier per axis makes neighbouring cells differ
+// in many bits. The mask makes the hash, and so the noise, periodic (see kLatticeMask).
+NOISE_CONST uint kHashAxisX = 0x8da6b343u;
+NOISE_CONST uint kHashAxisY = 0xd8163841u;
+NOISE_CONST uint kHashAxisZ = 0xcb1ab31fu;
+uint hashAxis(uint index, uint multiplier) { return (index & kLatticeMask) * multiplier; }
+
+// Fast hash, final mix of seedMix + the three axis terms into a gradient index in [0, 12):
+// one multiply-xorshift round spreads the bits (pure ALU, no memory access), then the top 16
+// bits are scaled to [0, 12), cheaper than a modulo.
+uint fastGradient(uint h) {
+  h ^= h >> 16u;
+  h *= 0x7feb352du;
+  h ^= h >> 15u;
+  return ((h >> 16u) * 12u) >> 16u;
+}
+
 // Gradient index in [0, 12) of lattice point (i, j, k).
 uint latticeGradient(uint i, uint j, uint k, uint hashKind, uint seedMix) {
-  if (hashKind == kNoiseHashReference) {
-    // Perlin's nested permutation lookup, as in Gustavson's reference code.
-    return PERM((i & 255u) + PERM((j & 255u) + PERM(k & 255u))) % 12u;
-  }
-  // Fast: a different odd multiplier per axis makes neighbouring cells differ in many bits,
-  // then one multiply-xorshift round spreads them; pure ALU, no memory access.
-  uint h = seedMix + (i & kLatticeMask) * 0x8da6b343u + (j & kLatticeMask) * 0xd8163841u +
-           (k & kLatticeMask) * 0xcb1ab31fu;
-  h ^= h >> 15u;
-  h *= 0x2c1b3c6du;
-  h ^= h >> 12u;
-  h *= 0x297a2d39u;
-  h ^= h >> 15u;
-  // Top 16 bits scaled to [0, 12): unbiased enough and cheaper than a modulo.
-  return ((h >> 16u) * 12u) >> 16u;
+  if (hashKind == kNoiseHashReference) return referenceGradient(i, j, k);
+  return fastGradient(seedMix + hashAxis(i, kHashAxisX) + hashAxis(j, kHashAxisY) + hashAxis(k, kHashAxisZ));
 }
 
 // Dot product of gradient g with (x, y, z). The 12 gradients are the cube-edge midpoints in
@@ -84,18 +97,15 @@ real cornerContribution(uint g, real x, real y, real z) {
   return t * t * gradientDot(g, x, y, z);
 }
 
+// Any finite point wrapped into [-P/2, P/2]. The clamp only acts where float rounding left a
+// remainder beyond the period (|x| > 2^24 * P).
 real wrapDomain(real x) {
-  // The clamp only acts where float rounding left a huge remainder (|x| > 2^24 * P).
   return clamp(x - kDomainPeriod * roundEven(x * kInvDomainPeriod), -kDomainPeriod, kDomainPeriod);
 }
 
 vec3 wrapPoint(vec3 p) { return vec3(wrapDomain(p.x), wrapDomain(p.y), wrapDomain(p.z)); }
 
-// 3D simplex noise N(p) in [-1, 1] (Gustavson 2005, "Simplex noise demystified").
-// `shift` is added to the lattice indices: with shift S = I + (I.x+I.y+I.z)/3 for an integer
-// vector I whose components sum to a multiple of 3, N(p; S) = N(p + I). The renderer uses this
-// to rebase far-away positions exactly (DESIGN.md, Earth-scale precision).
-// `p` must be wrapped (wrapPoint), so that every coordinate is at most 2^24 units from 0.
+// N(p) for a p derived from a wrapped point (wrapPoint, then scaled by at most 8^31).
 real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
   PRECISE real x = p.x;
   PRECISE real y = p.y;
@@ -103,9 +113,9 @@ real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
 
   // Skew into the cubic lattice and find the cell.
   PRECISE real s = (x + y + z) * kSkew3;
-  int ci = int(floor(x + s));
-  int cj = int(floor(y + s));
-  int ck = int(floor(z + s));
+  int ci = int(clamp(floor(x + s), -kCellLimit, kCellLimit));
+  int cj = int(clamp(floor(y + s), -kCellLimit, kCellLimit));
+  int ck = int(clamp(floor(z + s), -kCellLimit, kCellLimit));
   // Unskew the cell origin back and take the offset from it.
   PRECISE real t = real(ci + cj + ck) * kUnskew3;
   PRECISE real x0 = x - (real(ci) - t);
@@ -137,10 +147,27 @@ real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
   uint i = uint(ci) + shift.x;
   uint j = uint(cj) + shift.y;
   uint k = uint(ck) + shift.z;
-  PRECISE real n0 = cornerContribution(latticeGradient(i, j, k, hashKind, seedMix), x0, y0, z0);
-  PRECISE real n1 = cornerContribution(latticeGradient(i + i1, j + j1, k + k1, hashKind, seedMix), x1, y1, z1);
-  PRECISE real n2 = cornerContribution(latticeGradient(i + i2, j + j2, k + k2, hashKind, seedMix), x2, y2, z2);
-  PRECISE real n3 = cornerContribution(latticeGradient(i + 1u, j + 1u, k + 1u, hashKind, seedMix), x3, y3, z3);
+  uint g0, g1, g2, g3;
+  if (hashKind == kNoiseHashReference) {
+    g0 = referenceGradient(i, j, k);
+    g1 = referenceGradient(i + i1, j + j1, k + k1);
+    g2 = referenceGradient(i + i2, j + j2, k + k2);
+    g3 = referenceGradient(i + 1u, j + 1u, k + 1u);
+  } else {
+    // The corners share their axis terms: six multiplies instead of twelve
+    // (same values as latticeGradient; the seed rides on the x terms).
+    uint x0h = seedMix + hashAxis(i, kHashAxisX), x1h = seedMix + hashAxis(i + 1u, kHashAxisX);
+    uint y0h = hashAxis(j, kHashAxisY), y1h = hashAxis(j + 1u, kHashAxisY);
+    uint z0h = hashAxis(k, kHashAxisZ), z1h = hashAxis(k + 1u, kHashAxisZ);
+    g0 = fastGradient(x0h + y0h + z0h);
+    g1 = fastGradient((i1 != 0u ? x1h : x0h) + (j1 != 0u ? y1h : y0h) + (k1 != 0u ? z1h : z0h));
+    g2 = fastGradient((i2 != 0u ? x1h : x0h) + (j2 != 0u ? y1h : y0h) + (k2 != 0u ? z1h : z0h));
+    g3 = fastGradient(x1h + y1h + z1h);
+  }
+  PRECISE real n0 = cornerContribution(g0, x0, y0, z0);
+  PRECISE real n1 = cornerContribution(g1, x1, y1, z1);
+  PRECISE real n2 = cornerContribution(g2, x2, y2, z2);
+  PRECISE real n3 = cornerContribution(g3, x3, y3, z3);
   return kNoiseScale * (n0 + n1 + n2 + n3);
 }
 
@@ -149,10 +176,8 @@ real simplexNoise(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
 }
 
 // The fractals below follow the formulas of issue 2 (Musgrave's definitions as given in
-// seed 002 §4.9-4.10), with p_i = p * L^i and w_i = L^(-i*H). p_i is kept wrapped into the
-// noise's period after each scaling (exact for integer L; otherwise a difference only where
-// |p_i| > 6.3e6 and a float cannot resolve a lattice cell anyway), so 32 octaves of any
-// finite point never overflow.
+// seed 002 §4.9-4.10), with p_i = p * L^i (p wrapped once, see kDomainPeriod) and
+// w_i = L^(-i*H).
 
 // fBm: sum of N(p_i) * w_i.
 real fbmNoise(IN(NoiseParams) params, vec3 p) {
@@ -161,7 +186,7 @@ real fbmNoise(IN(NoiseParams) params, vec3 p) {
   vec3 q = wrapPoint(p);
   for (uint i = 0u; i < params.octaves; ++i) {
     sum += simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) * w;
-    q = wrapPoint(q * real(params.lacunarity));
+    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
   }
   return sum;
@@ -177,7 +202,7 @@ real ridgedNoise(IN(NoiseParams) params, vec3 p) {
   PRECISE real result = signal;
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = wrapPoint(q * real(params.lacunarity));
+    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
     PRECISE real weight = clamp(signal * real(params.gain), real(0.0f), real(1.0f));
     signal = offset - abs(simplexWrapped(q, uvec3(0u), params.hash, params.seedMix));
@@ -196,7 +221,7 @@ real hybridNoise(IN(NoiseParams) params, vec3 p) {
   PRECISE real weight = result;
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = wrapPoint(q * real(params.lacunarity));
+    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
     weight = clamp(weight, real(0.0f), real(1.0f));
     PRECISE real signal = (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w;
@@ -214,7 +239,7 @@ real heteroNoise(IN(NoiseParams) params, vec3 p) {
   PRECISE real value = offset + simplexWrapped(q, uvec3(0u), params.hash, params.seedMix);
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = wrapPoint(q * real(params.lacunarity));
+    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
     value += (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w * value;
   }
@@ -228,7 +253,7 @@ real cascadeNoise(IN(NoiseParams) params, vec3 p) {
   vec3 q = wrapPoint(p);
   for (uint i = 0u; i < params.octaves; ++i) {
     value *= simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + real(params.offset);
-    q = wrapPoint(q * real(params.lacunarity));
+    q = q * real(params.lacunarity);
   }
   return value;
 }

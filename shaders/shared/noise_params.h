@@ -24,7 +24,7 @@ GPU_CONST uint kNoiseMaxOctaves = 32u;
 GPU_CONST uint kNoisePermutationSize = 512u;  // 256 entries, stored twice (no index wrap)
 
 // Bindings of the point-evaluation compute shader (set 0).
-GPU_CONST uint kNoiseBindingPoints = 0u;       // float[3 * count], x y z packed
+GPU_CONST uint kNoiseBindingPoints = 0u;       // vec4[count], w unused (one aligned load per point)
 GPU_CONST uint kNoiseBindingValues = 1u;       // float[count]
 GPU_CONST uint kNoiseBindingPermutation = 2u;  // uint[kNoisePermutationSize]
 GPU_CONST uint kNoiseWorkgroupSize = 256u;
