@@ -181,27 +181,35 @@ void Allocator::checkInitialized() const {
   if (device_ == VK_NULL_HANDLE) throw std::logic_error("Allocator used before init() or after destroy()");
 }
 
-Allocation Allocator::allocateForBuffer(VkBuffer buffer, MemoryUsage usage) {
-  Request request;
-  request.usage = usage;
-  request.kind = ResourceKind::Linear;
-  request.buffer = buffer;
-
+// Runs a vkGet*MemoryRequirements2 query (under the lock) that also asks whether the
+// resource wants a dedicated allocation, and records both in `request`.
+template <typename Query>
+void Allocator::queryRequirements(Request& request, Query query) {
   VkMemoryDedicatedRequirements dedicated = {};
   dedicated.sType = VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS;
   VkMemoryRequirements2 requirements = {};
   requirements.sType = VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2;
   requirements.pNext = &dedicated;
-  VkBufferMemoryRequirementsInfo2 info = {};
-  info.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_REQUIREMENTS_INFO_2;
-  info.buffer = buffer;
   {
     std::lock_guard lock(mutex_);
     checkInitialized();
-    vkGetBufferMemoryRequirements2(device_, &info, &requirements);
+    query(requirements);
   }
   request.requirements = requirements.memoryRequirements;
   request.wantsDedicated = dedicated.prefersDedicatedAllocation || dedicated.requiresDedicatedAllocation;
+}
+
+Allocation Allocator::allocateForBuffer(VkBuffer buffer, MemoryUsage usage) {
+  Request request;
+  request.usage = usage;
+  request.kind = ResourceKind::Linear;
+  request.buffer = buffer;
+  queryRequirements(request, [&](VkMemoryRequirements2& requirements) {
+    VkBufferMemoryRequirementsInfo2 info = {};
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_REQUIREMENTS_INFO_2;
+    info.buffer = buffer;
+    vkGetBufferMemoryRequirements2(device_, &info, &requirements);
+  });
 
   Allocation allocation = allocate(request);
   // Binding touches only the buffer (externally synchronized by the caller), not our state.
@@ -216,22 +224,12 @@ Allocation Allocator::allocateForImage(VkImage image, MemoryUsage usage, Resourc
   request.usage = usage;
   request.kind = kind;
   request.image = image;
-
-  VkMemoryDedicatedRequirements dedicated = {};
-  dedicated.sType = VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS;
-  VkMemoryRequirements2 requirements = {};
-  requirements.sType = VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2;
-  requirements.pNext = &dedicated;
-  VkImageMemoryRequirementsInfo2 info = {};
-  info.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_REQUIREMENTS_INFO_2;
-  info.image = image;
-  {
-    std::lock_guard lock(mutex_);
-    checkInitialized();
+  queryRequirements(request, [&](VkMemoryRequirements2& requirements) {
+    VkImageMemoryRequirementsInfo2 info = {};
+    info.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_REQUIREMENTS_INFO_2;
+    info.image = image;
     vkGetImageMemoryRequirements2(device_, &info, &requirements);
-  }
-  request.requirements = requirements.memoryRequirements;
-  request.wantsDedicated = dedicated.prefersDedicatedAllocation || dedicated.requiresDedicatedAllocation;
+  });
 
   Allocation allocation = allocate(request);
   const VkResult result = vkBindImageMemory(device_, image, allocation.memory, allocation.offset);

@@ -142,6 +142,8 @@ class Allocator {
     VkImage image = VK_NULL_HANDLE;    // VkMemoryDedicatedAllocateInfo
   };
 
+  template <typename Query>
+  void queryRequirements(Request& request, Query query);
   Allocation allocate(const Request& request);
   std::vector<uint32_t> candidateTypes(uint32_t memoryTypeBits, MemoryUsage usage) const;
   std::optional<Allocation> allocateFromBlocks(const Request& request, uint32_t type);
