@@ -19,19 +19,31 @@ constexpr uint32_t kBufferCount = 3;  // points, values, permutation (shaders/sh
 
 GpuNoise::GpuNoise(vk::Context& context) : context_(context) {
   static_assert(gpu::kNoiseBindingPoints == 0 && gpu::kNoiseBindingValues == 1 && gpu::kNoiseBindingPermutation == 2);
-  setSource_ = vk::createComputePipeline(context_, kSpv_noise_eval_comp, kBufferCount, sizeof(gpu::NoiseParams), {}, 1);
-  timer_.create(context_, 4);
-  permutation_ = vk::createBuffer(context_, sizeof(PermutationTable), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                  vk::MemoryUsage::DeviceLocal);
+  try {
+    // The default pipeline (fBm, fast hash) also owns the descriptor pool of set_.
+    pipelineFor(NoiseType::Fbm, NoiseHash::Fast);
+    timer_.create(context_, 4);
+    permutation_ = vk::createBuffer(context_, sizeof(PermutationTable), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    vk::MemoryUsage::DeviceLocal);
+  } catch (...) {
+    release();
+    throw;
+  }
 }
 
-GpuNoise::~GpuNoise() {
+GpuNoise::~GpuNoise() { release(); }
+
+void GpuNoise::release() {
   vk::destroyBuffer(context_, points_);
   vk::destroyBuffer(context_, values_);
   vk::destroyBuffer(context_, permutation_);
   timer_.destroy(context_);
   for (auto& [key, pipeline] : pipelines_) vk::destroyComputePipeline(context_, pipeline);
-  vk::destroyComputePipeline(context_, setSource_);
+  pipelines_.clear();
+}
+
+const vk::ComputePipeline& GpuNoise::setOwner() const {
+  return pipelines_.at({uint32_t(NoiseType::Fbm), uint32_t(NoiseHash::Fast)});
 }
 
 const vk::ComputePipeline& GpuNoise::pipelineFor(NoiseType type, NoiseHash hash) {
@@ -54,9 +66,9 @@ void GpuNoise::setPoints(std::span<const glm::vec3> points) {
     values_ = vk::createBuffer(context_, points.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                vk::MemoryUsage::DeviceLocal);
     capacity_ = points.size();
-    VK_CHECK(vkResetDescriptorPool(context_.device, setSource_.descriptorPool, 0));
+    VK_CHECK(vkResetDescriptorPool(context_.device, setOwner().descriptorPool, 0));
     const vk::Buffer* buffers[kBufferCount] = {&points_, &values_, &permutation_};
-    set_ = vk::allocateStorageSet(context_, setSource_, buffers);
+    set_ = vk::allocateStorageSet(context_, setOwner(), buffers);
   }
   // Padded to vec4: on lavapipe one 16-byte load per point beats three 4-byte gathers
   // (measured +12 % throughput at 1 octave).

@@ -38,15 +38,16 @@ class GpuNoise {
   void evaluate(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out);
 
  private:
+  void release();
   void uploadPermutation(uint32_t seed);
   // The pipeline specialised for this type and hash, created on first use.
   const vk::ComputePipeline& pipelineFor(NoiseType type, NoiseHash hash);
 
   vk::Context& context_;
   // Keyed by (type, hash). All share one descriptor set layout definition, so the set
-  // allocated from the first pipeline binds to every one of them.
+  // allocated from the default pipeline's pool binds to every one of them.
   std::map<std::pair<uint32_t, uint32_t>, vk::ComputePipeline> pipelines_;
-  vk::ComputePipeline setSource_;  // owns the descriptor pool of set_
+  const vk::ComputePipeline& setOwner() const;
   vk::GpuTimer timer_;
   vk::Buffer points_;
   vk::Buffer values_;
