@@ -19,6 +19,8 @@ constexpr uint32_t kBufferCount = 3;  // points, values, permutation (shaders/sh
 
 GpuNoise::GpuNoise(vk::Context& context) : context_(context) {
   static_assert(gpu::kNoiseBindingPoints == 0 && gpu::kNoiseBindingValues == 1 && gpu::kNoiseBindingPermutation == 2);
+  const uint32_t maxGroups = std::min<uint32_t>(context_.properties.limits.maxComputeWorkGroupCount[0], 65535u);
+  maxPointsPerDispatch_ = size_t(maxGroups) * gpu::kNoiseWorkgroupSize;
   try {
     // The default pipeline (fBm, fast hash) also owns the descriptor pool of set_.
     pipelineFor(NoiseType::Fbm, NoiseHash::Fast);
@@ -95,8 +97,7 @@ double GpuNoise::dispatch(const NoiseSettings& settings) {
   params.count = uint32_t(count_);
   const vk::ComputePipeline& pipeline = pipelineFor(settings.type, settings.hash);
 
-  const uint32_t maxGroups = std::min<uint32_t>(context_.properties.limits.maxComputeWorkGroupCount[0], 65535u);
-  const size_t pointsPerDispatch = size_t(maxGroups) * gpu::kNoiseWorkgroupSize;
+  const size_t pointsPerDispatch = maxPointsPerDispatch_;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
     timer_.reset(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
@@ -114,6 +115,12 @@ double GpuNoise::dispatch(const NoiseSettings& settings) {
                       VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   });
   return timer_.results(context_).front().milliseconds;
+}
+
+void GpuNoise::setMaxPointsPerDispatch(size_t points) {
+  const uint32_t maxGroups = std::min<uint32_t>(context_.properties.limits.maxComputeWorkGroupCount[0], 65535u);
+  size_t groups = std::clamp<size_t>(points / gpu::kNoiseWorkgroupSize, 1, maxGroups);
+  maxPointsPerDispatch_ = groups * gpu::kNoiseWorkgroupSize;
 }
 
 void GpuNoise::readValues(std::span<float> out) {

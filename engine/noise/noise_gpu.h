@@ -34,6 +34,10 @@ class GpuNoise {
   // Copies the values of the last dispatch() out.
   void readValues(std::span<float> out);
 
+  // Caps the points of one vkCmdDispatch (default: what maxComputeWorkGroupCount allows);
+  // larger sets are split into several dispatches. Rounded down to whole workgroups.
+  void setMaxPointsPerDispatch(size_t points);
+
   // setPoints + dispatch + readValues.
   void evaluate(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out);
 
@@ -56,6 +60,7 @@ class GpuNoise {
   size_t capacity_ = 0;  // points the buffers can hold
   size_t count_ = 0;     // points set
   int64_t permutationSeed_ = -1;
+  size_t maxPointsPerDispatch_ = 0;
 };
 
 }  // namespace planet::noise
