@@ -14,7 +14,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers
   vulkan-validationlayers
   glslang-tools spirv-tools
-  libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
   libgtest-dev
   libnoise-dev
 )

@@ -1,0 +1,524 @@
+#include "planet/planet_description.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "core/error.h"
+
+namespace planet {
+namespace {
+
+constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer"};
+constexpr std::string_view kPlanetKeys[] = {"name",        "radius_m",     "has_ocean",
+                                            "sea_level_m", "height_scale", "base_height_m"};
+constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m", "snow_line_m", "ice_cap_latitude_deg",
+                                           "deep_water", "shallow_water",  "beach",       "lowland",
+                                           "highland",   "cliff",          "snow"};
+constexpr std::string_view kLayerKeys[] = {"name", "type", "octaves",   "lacunarity",   "H",          "offset", "gain",
+                                           "seed", "hash", "frequency", "wavelength_m", "amplitude_m"};
+
+struct SchemeName {
+  ColorScheme scheme;
+  const char* name;
+};
+constexpr SchemeName kSchemeNames[] = {
+    {ColorScheme::Earth, "earth"},
+    {ColorScheme::Altitude, "altitude"},
+    {ColorScheme::Moon, "moon"},
+    {ColorScheme::Mars, "mars"},
+};
+
+// Shortest text that reads back to the same value, with a compact exponent ("1e8", "3e-7"),
+// so messages quote ranges as written and canonicalForm is exact. Floats (colours) use their
+// own shortest form ("0.3", not 0.30000001192092896).
+template <typename Real>
+std::string formatNumber(Real value) {
+  if (value == Real(0)) value = Real(0);  // -0 prints as 0: equal values, equal text
+  char buffer[64];
+  std::string text(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+  size_t e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  bool negative = exponent[0] == '-';
+  size_t digits = exponent.find_first_not_of("+-0");
+  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent.substr(digits == std::string::npos ? 0 : digits);
+}
+
+std::string formatRange(Range range) {
+  return fmt::format("[{}, {}]", formatNumber(range.min), formatNumber(range.max));
+}
+
+const char* typeName(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "table";
+    case toml::node_type::array: return "array";
+    case toml::node_type::string: return "string";
+    case toml::node_type::integer: return "integer";
+    case toml::node_type::floating_point: return "float";
+    case toml::node_type::boolean: return "boolean";
+    case toml::node_type::date: return "date";
+    case toml::node_type::time: return "time";
+    case toml::node_type::date_time: return "date-time";
+    default: return "nothing";
+  }
+}
+
+uint32_t lineOf(const toml::node& node) { return node.source().begin.line; }
+
+// Where messages come from: "earth.toml:12: ..." (or "earth.toml: ..." without a line).
+class Context {
+ public:
+  explicit Context(const std::string& source) : source_(source) {}
+
+  [[noreturn]] void fail(uint32_t line, const std::string& message) const {
+    if (line == 0) throw Error(fmt::format("{}: {}", source_, message));
+    throw Error(fmt::format("{}:{}: {}", source_, line, message));
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  const std::string& source_;
+};
+
+// Text that toml++ would reject with a confusing message (or that is not text at all) is
+// reported first: empty input, bytes over the size limit, control bytes, invalid UTF-8.
+void checkText(const Context& context, std::string_view text) {
+  if (text.size() > kMaxPresetBytes)
+    context.fail(0, fmt::format("too large ({} bytes, limit {})", text.size(), kMaxPresetBytes));
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
+    context.fail(0, "empty document (expected [planet], [colors] and [[layer]] tables)");
+  uint32_t line = 1, column = 1;
+  for (size_t i = 0; i < text.size();) {
+    auto byte = uint8_t(text[i]);
+    size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xe ? 3 : (byte >> 3) == 0x1e ? 4 : 0;
+    bool valid = length != 0 && i + length <= text.size();
+    uint32_t codePoint = length == 1 ? byte : byte & (0x7fu >> length);
+    for (size_t k = 1; valid && k < length; ++k) {
+      auto next = uint8_t(text[i + k]);
+      valid = (next & 0xc0) == 0x80;
+      codePoint = (codePoint << 6) | (next & 0x3fu);
+    }
+    // Overlong forms, UTF-16 surrogates and values past U+10FFFF are not UTF-8 either.
+    constexpr uint32_t kMinForLength[] = {0, 0, 0x80, 0x800, 0x10000};
+    valid = valid && codePoint >= kMinForLength[length] && codePoint <= 0x10ffff &&
+            !(codePoint >= 0xd800 && codePoint <= 0xdfff);
+    if (!valid)
+      throw Error(
+          fmt::format("{}:{}:{}: not UTF-8 text (invalid byte 0x{:02x})", context.source(), line, column, byte));
+    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7f)
+      throw Error(fmt::format("{}:{}:{}: not TOML text (control byte 0x{:02x})", context.source(), line, column, byte));
+    if (byte == '\n') {
+      ++line;
+      column = 0;
+    }
+    ++column;
+    i += length;
+  }
+}
+
+// One TOML table. Keys that are not in `known` are rejected up front, so a typo is reported
+// as itself rather than as the required key it misspells; then values are read with their
+// type and range checked.
+class TableReader {
+ public:
+  TableReader(const Context& context, const toml::table& table, std::string displayName,
+              std::span<const std::string_view> known)
+      : context_(context), table_(table), displayName_(std::move(displayName)) {
+    for (auto&& [key, value] : table) {
+      if (std::find(known.begin(), known.end(), key.str()) == known.end())
+        context_.fail(key.source().begin.line, fmt::format("unknown key '{}' in {}", key.str(), displayName_));
+    }
+  }
+
+  uint32_t line() const { return lineOf(table_); }
+  const toml::node* find(std::string_view key) const { return table_.get(key); }
+
+  [[noreturn]] void missing(std::string_view key) const {
+    context_.fail(line(), fmt::format("missing key '{}' in {}", key, displayName_));
+  }
+  [[noreturn]] void wrongType(std::string_view key, const toml::node& node, const char* expected) const {
+    context_.fail(lineOf(node), fmt::format("'{}' must be {}, got {}", key, expected, typeName(node)));
+  }
+
+  std::optional<double> number(std::string_view key, std::optional<Range> range = std::nullopt) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    double value;
+    if (auto integer = node->as_integer())
+      value = double(integer->get());
+    else if (auto floating = node->as_floating_point())
+      value = floating->get();
+    else
+      wrongType(key, *node, "a number");
+    if (!range) return value;  // checked by its consumer (noise::validateNoiseSettings)
+    if (!std::isfinite(value))
+      context_.fail(lineOf(*node), fmt::format("{} must be a finite number, got {}", key, formatNumber(value)));
+    if (!(value >= range->min && value <= range->max))
+      context_.fail(lineOf(*node),
+                    fmt::format("{} must be in {}, got {}", key, formatRange(*range), formatNumber(value)));
+    return value;
+  }
+  double requiredNumber(std::string_view key, Range range) const {
+    if (auto value = number(key, range)) return *value;
+    missing(key);
+  }
+
+  std::optional<int64_t> integer(std::string_view key, Range range) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    auto integer = node->as_integer();
+    if (!integer) wrongType(key, *node, "an integer");
+    int64_t value = integer->get();
+    if (!(double(value) >= range.min && double(value) <= range.max))
+      context_.fail(lineOf(*node), fmt::format("{} must be in {}, got {}", key, formatRange(range), value));
+    return value;
+  }
+
+  std::optional<bool> boolean(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    auto boolean = node->as_boolean();
+    if (!boolean) wrongType(key, *node, "a boolean");
+    return boolean->get();
+  }
+
+  std::optional<std::string> string(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    auto string = node->as_string();
+    if (!string) wrongType(key, *node, "a string");
+    return string->get();
+  }
+  std::string requiredString(std::string_view key) const {
+    if (auto value = string(key)) return *value;
+    missing(key);
+  }
+
+  // A name printed in logs and reports: one line, not empty, not huge.
+  std::string name(std::string_view key) const {
+    std::string value = requiredString(key);
+    uint32_t at = lineOf(*find(key));
+    if (value.empty() || value.size() > kMaxNameBytes)
+      context_.fail(at, fmt::format("{} must be 1 to {} bytes long, got {}", key, kMaxNameBytes, value.size()));
+    for (char c : value)
+      if (uint8_t(c) < 0x20 || c == 0x7f) context_.fail(at, fmt::format("{} must not contain control characters", key));
+    return value;
+  }
+
+  // [r, g, b], linear, each in kColorComponentRange.
+  std::optional<glm::vec3> color(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 3)
+      context_.fail(lineOf(*node), fmt::format("'{}' must be an array of 3 numbers [r, g, b], got {}", key,
+                                               array ? fmt::format("{} elements", array->size()) : typeName(*node)));
+    glm::vec3 color;
+    for (int i = 0; i < 3; ++i) {
+      const toml::node& element = *array->get(size_t(i));
+      double value;
+      if (auto integer = element.as_integer())
+        value = double(integer->get());
+      else if (auto floating = element.as_floating_point())
+        value = floating->get();
+      else
+        context_.fail(lineOf(element), fmt::format("{}[{}] must be a number, got {}", key, i, typeName(element)));
+      if (!(value >= kColorComponentRange.min && value <= kColorComponentRange.max))
+        context_.fail(lineOf(element), fmt::format("{}[{}] must be in {}, got {}", key, i,
+                                                   formatRange(kColorComponentRange), formatNumber(value)));
+      color[i] = float(value);
+    }
+    return color;
+  }
+
+ private:
+  const Context& context_;
+  const toml::table& table_;
+  std::string displayName_;
+};
+
+// Runs `parse` (which throws planet::Error for a bad value) and prefixes its message with
+// the file and line of the value that caused it.
+template <typename Parse>
+auto parseAt(const Context& context, uint32_t line, Parse parse) {
+  try {
+    return parse();
+  } catch (const Error& e) {
+    context.fail(line, e.what());
+  }
+}
+
+const toml::table& requireTable(const Context& context, const toml::table& root, std::string_view key) {
+  const toml::node* node = root.get(key);
+  if (!node) context.fail(0, fmt::format("missing table [{}]", key));
+  if (!node->is_table()) context.fail(lineOf(*node), fmt::format("'{}' must be a table, got {}", key, typeName(*node)));
+  return *node->as_table();
+}
+
+PlanetColors readColors(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[colors]", kColorKeys);
+  std::string schemeName = reader.requiredString("scheme");
+  PlanetColors colors =
+      defaultColors(parseAt(context, lineOf(*reader.find("scheme")), [&] { return parseColorScheme(schemeName); }));
+  colors.beachHeightM = reader.number("beach_height_m", kBeachHeightRangeM).value_or(colors.beachHeightM);
+  colors.snowLineM = reader.number("snow_line_m", kSnowLineRangeM).value_or(colors.snowLineM);
+  colors.iceCapLatitudeDeg =
+      reader.number("ice_cap_latitude_deg", kIceCapLatitudeRangeDeg).value_or(colors.iceCapLatitudeDeg);
+  struct ColorKey {
+    std::string_view key;
+    glm::vec3 PlanetColors::*member;
+  };
+  const ColorKey colorKeys[] = {
+      {"deep_water", &PlanetColors::deepWater},
+      {"shallow_water", &PlanetColors::shallowWater},
+      {"beach", &PlanetColors::beach},
+      {"lowland", &PlanetColors::lowland},
+      {"highland", &PlanetColors::highland},
+      {"cliff", &PlanetColors::cliff},
+      {"snow", &PlanetColors::snow},
+  };
+  for (const ColorKey& c : colorKeys)
+    if (auto value = reader.color(c.key)) colors.*c.member = *value;
+  return colors;
+}
+
+NoiseLayer readLayer(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[[layer]]", kLayerKeys);
+  NoiseLayer layer;
+  layer.name = reader.name("name");
+  std::string type = reader.requiredString("type");
+  layer.noise.type = parseAt(context, lineOf(*reader.find("type")), [&] { return noise::parseNoiseType(type); });
+  std::optional<int64_t> octaves = reader.integer("octaves", {noise::kMinOctaves, noise::kMaxOctaves});
+  if (!octaves) reader.missing("octaves");
+  layer.noise.octaves = int(*octaves);
+  layer.noise.lacunarity = reader.number("lacunarity").value_or(layer.noise.lacunarity);
+  layer.noise.H = reader.number("H").value_or(layer.noise.H);
+  layer.noise.offset = reader.number("offset");
+  layer.noise.gain = reader.number("gain");
+  layer.noise.seed = uint32_t(reader.integer("seed", kSeedRange).value_or(0));
+  if (auto hash = reader.string("hash"))
+    layer.noise.hash = parseAt(context, lineOf(*reader.find("hash")), [&] { return noise::parseNoiseHash(*hash); });
+
+  std::optional<double> frequency = reader.number("frequency", kFrequencyRange);
+  std::optional<double> wavelength = reader.number("wavelength_m", kWavelengthRangeM);
+  if (frequency && wavelength)
+    context.fail(lineOf(*reader.find("wavelength_m")), "give either frequency or wavelength_m in [[layer]], not both");
+  if (!frequency && !wavelength)
+    context.fail(reader.line(), "missing key 'frequency' (or 'wavelength_m') in [[layer]]");
+  layer.frequency = frequency ? *frequency : 1.0 / *wavelength;
+  layer.amplitudeM = reader.requiredNumber("amplitude_m", kAmplitudeRangeM);
+
+  try {
+    noise::validateNoiseSettings(layer.noise);
+  } catch (const Error& e) {
+    context.fail(reader.line(), fmt::format("layer '{}': {}", layer.name, e.what()));
+  }
+  return layer;
+}
+
+std::vector<NoiseLayer> readLayers(const Context& context, const toml::table& root) {
+  const toml::node* node = root.get("layer");
+  if (!node) context.fail(0, "missing table [[layer]] (at least one noise layer)");
+  const toml::array* array = node->as_array();
+  if (array && array->empty()) context.fail(lineOf(*node), "at least one [[layer]] is required");
+  if (!array || !array->is_array_of_tables())
+    context.fail(lineOf(*node), fmt::format("'layer' must be an array of tables ([[layer]]), got {}",
+                                            array ? "an array of values" : typeName(*node)));
+  if (array->size() > size_t(kMaxLayers))
+    context.fail(lineOf(*array->get(size_t(kMaxLayers))),
+                 fmt::format("at most {} [[layer]] tables, got {}", kMaxLayers, array->size()));
+  std::vector<NoiseLayer> layers;
+  std::vector<uint32_t> lines;
+  for (const toml::node& element : *array) {
+    layers.push_back(readLayer(context, *element.as_table()));
+    lines.push_back(lineOf(element));
+    for (size_t i = 0; i + 1 < layers.size(); ++i)
+      if (layers[i].name == layers.back().name)
+        context.fail(lines.back(),
+                     fmt::format("duplicate layer name '{}' (first at line {})", layers[i].name, lines[i]));
+  }
+  return layers;
+}
+
+// toml++ messages are single lines, but a stray control character must not split ours.
+std::string oneLine(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (uint8_t(c) < 0x20) c = ' ';
+  return out;
+}
+
+}  // namespace
+
+const char* colorSchemeName(ColorScheme scheme) {
+  for (const SchemeName& s : kSchemeNames)
+    if (s.scheme == scheme) return s.name;
+  return "unknown";
+}
+
+ColorScheme parseColorScheme(std::string_view name) {
+  for (const SchemeName& s : kSchemeNames)
+    if (name == s.name) return s.scheme;
+  throw Error(fmt::format("unknown color scheme '{}' (expected earth, altitude, moon or mars)", name));
+}
+
+PlanetColors defaultColors(ColorScheme scheme) {
+  PlanetColors c;
+  c.scheme = scheme;
+  switch (scheme) {
+    case ColorScheme::Earth:
+      c.beachHeightM = 20.0;
+      c.snowLineM = 3500.0;
+      c.iceCapLatitudeDeg = 70.0;
+      c.deepWater = {0.004f, 0.016f, 0.045f};
+      c.shallowWater = {0.015f, 0.080f, 0.100f};
+      c.beach = {0.480f, 0.400f, 0.240f};
+      c.lowland = {0.050f, 0.110f, 0.020f};
+      c.highland = {0.170f, 0.130f, 0.070f};
+      c.cliff = {0.130f, 0.120f, 0.110f};
+      c.snow = {0.850f, 0.870f, 0.900f};
+      break;
+    case ColorScheme::Altitude:
+      c.deepWater = {0.0f, 0.0f, 0.3f};
+      c.shallowWater = {0.0f, 0.3f, 0.6f};
+      c.beach = {0.8f, 0.8f, 0.2f};
+      c.lowland = {0.0f, 0.4f, 0.0f};
+      c.highland = {0.6f, 0.3f, 0.0f};
+      c.cliff = {0.3f, 0.3f, 0.3f};
+      c.snow = {1.0f, 1.0f, 1.0f};
+      break;
+    case ColorScheme::Moon:
+      c.deepWater = c.shallowWater = {0.0f, 0.0f, 0.0f};
+      c.lowland = c.beach = {0.045f, 0.045f, 0.043f};
+      c.highland = c.snow = {0.160f, 0.155f, 0.150f};
+      c.cliff = {0.100f, 0.100f, 0.100f};
+      break;
+    case ColorScheme::Mars:
+      c.iceCapLatitudeDeg = 80.0;
+      c.deepWater = c.shallowWater = {0.0f, 0.0f, 0.0f};
+      c.beach = {0.300f, 0.130f, 0.060f};
+      c.lowland = {0.100f, 0.045f, 0.025f};
+      c.highland = {0.380f, 0.160f, 0.070f};
+      c.cliff = {0.200f, 0.100f, 0.060f};
+      c.snow = {0.800f, 0.780f, 0.750f};
+      break;
+  }
+  return c;
+}
+
+PlanetDescription parsePlanetDescription(std::string_view text, const std::string& sourceName) {
+  const Context context(sourceName);
+  checkText(context, text);
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(sourceName));
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}:{}: {}", sourceName, e.source().begin.line, e.source().begin.column,
+                            oneLine(e.description())));
+  }
+  for (auto&& [key, value] : root) {
+    if (std::find(std::begin(kTopKeys), std::end(kTopKeys), key.str()) != std::end(kTopKeys)) continue;
+    context.fail(key.source().begin.line, value.is_table() ? fmt::format("unknown table [{}]", key.str())
+                                                           : fmt::format("unknown key '{}' at top level", key.str()));
+  }
+
+  PlanetDescription d;
+  TableReader planet(context, requireTable(context, root, "planet"), "[planet]", kPlanetKeys);
+  d.name = planet.name("name");
+  d.radiusM = planet.requiredNumber("radius_m", kRadiusRangeM);
+  std::optional<bool> hasOcean = planet.boolean("has_ocean");
+  if (!hasOcean) planet.missing("has_ocean");
+  d.hasOcean = *hasOcean;
+  if (std::optional<double> seaLevel = planet.number("sea_level_m", kSeaLevelRangeM)) {
+    if (!d.hasOcean) context.fail(lineOf(*planet.find("sea_level_m")), "sea_level_m needs has_ocean = true");
+    d.seaLevelM = *seaLevel;
+  }
+  d.heightScale = planet.number("height_scale", kHeightScaleRange).value_or(1.0);
+  d.baseHeightM = planet.number("base_height_m", kBaseHeightRangeM).value_or(0.0);
+  d.colors = readColors(context, requireTable(context, root, "colors"));
+  d.layers = readLayers(context, root);
+  return d;
+}
+
+PlanetDescription loadPlanetDescription(const std::string& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+  if (!file) throw Error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
+  // One byte past the limit tells "too large" from "exactly at the limit".
+  std::string text(kMaxPresetBytes + 1, '\0');
+  size_t size = std::fread(text.data(), 1, text.size(), file.get());
+  if (std::ferror(file.get())) throw Error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
+  text.resize(size);
+  return parsePlanetDescription(text, path);
+}
+
+std::vector<std::string> presetNames() {
+  std::vector<std::string> names;
+  for (const EmbeddedPreset& preset : embeddedPresets()) names.emplace_back(preset.name);
+  return names;
+}
+
+PlanetDescription resolvePreset(const std::string& nameOrFile) {
+  if (nameOrFile.ends_with(".toml") || nameOrFile.find('/') != std::string::npos)
+    return loadPlanetDescription(nameOrFile);
+  for (const EmbeddedPreset& preset : embeddedPresets())
+    if (nameOrFile == preset.name) return parsePlanetDescription(preset.text, nameOrFile + ".toml");
+  std::string names;
+  for (const EmbeddedPreset& preset : embeddedPresets())
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", preset.name);
+  throw Error(fmt::format("unknown planet preset '{}' (built-in: {}; or a FILE.toml)", nameOrFile, names));
+}
+
+std::string canonicalForm(const PlanetDescription& d) {
+  auto color = [](const glm::vec3& c) {
+    return fmt::format("{},{},{}", formatNumber(c.x), formatNumber(c.y), formatNumber(c.z));
+  };
+  // Names carry their length, so no name can imitate the lines that follow it.
+  std::string out = "planet-description v1\n";
+  out += fmt::format("name={}:{}\nradius_m={}\nhas_ocean={}\nsea_level_m={}\nheight_scale={}\nbase_height_m={}\n",
+                     d.name.size(), d.name, formatNumber(d.radiusM), d.hasOcean, formatNumber(d.seaLevelM),
+                     formatNumber(d.heightScale), formatNumber(d.baseHeightM));
+  const PlanetColors& c = d.colors;
+  out +=
+      fmt::format("scheme={}\nbeach_height_m={}\nsnow_line_m={}\nice_cap_latitude_deg={}\n", colorSchemeName(c.scheme),
+                  formatNumber(c.beachHeightM), formatNumber(c.snowLineM), formatNumber(c.iceCapLatitudeDeg));
+  out += fmt::format("deep_water={}\nshallow_water={}\nbeach={}\nlowland={}\nhighland={}\ncliff={}\nsnow={}\n",
+                     color(c.deepWater), color(c.shallowWater), color(c.beach), color(c.lowland), color(c.highland),
+                     color(c.cliff), color(c.snow));
+  for (size_t i = 0; i < d.layers.size(); ++i) {
+    const NoiseLayer& l = d.layers[i];
+    const noise::NoiseSettings& n = l.noise;
+    out += fmt::format(
+        "layer.{0}.name={1}:{2}\nlayer.{0}.type={3}\nlayer.{0}.octaves={4}\nlayer.{0}.lacunarity={5}\n"
+        "layer.{0}.H={6}\nlayer.{0}.offset={7}\nlayer.{0}.gain={8}\nlayer.{0}.seed={9}\nlayer.{0}.hash={10}\n"
+        "layer.{0}.frequency={11}\nlayer.{0}.amplitude_m={12}\n",
+        i, l.name.size(), l.name, noise::noiseTypeName(n.type), n.octaves, formatNumber(n.lacunarity),
+        formatNumber(n.H), formatNumber(n.offset.value_or(noise::defaultOffset(n.type))),
+        formatNumber(n.gain.value_or(noise::kDefaultGain)), n.seed, noise::noiseHashName(n.hash),
+        formatNumber(l.frequency), formatNumber(l.amplitudeM));
+  }
+  return out;
+}
+
+uint64_t fnv1a64(std::string_view bytes) {
+  uint64_t hash = 14695981039346656037ull;  // FNV-1a 64-bit offset basis
+  for (char c : bytes) {
+    hash ^= uint8_t(c);
+    hash *= 1099511628211ull;  // FNV 64-bit prime
+  }
+  return hash;
+}
+
+uint64_t descriptionHash(const PlanetDescription& description) { return fnv1a64(canonicalForm(description)); }
+
+}  // namespace planet

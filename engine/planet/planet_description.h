@@ -1,0 +1,125 @@
+// A planet: its radius, ocean, the stack of noise layers that forms its heights, and its
+// colours, read from TOML presets (engine/planet/presets/*.toml) and validated strictly, so
+// that a typo or a wild value is one clear line naming the file, the line and the key.
+//
+// How a height is formed (the renderer's compute shaders and any CPU reference follow this):
+//   d          unit direction from the planet's centre (planet frame)
+//   p          = radiusM * d, the point on the radius sphere in metres
+//   n_l        = noise_l(p * frequency_l), the fractal of layer l (noise::NoiseSettings)
+//   height(d)  = heightScale * (baseHeightM + sum over layers of amplitudeM_l * n_l)
+//   surface    = (radiusM + height(d)) * d
+// Noise is sampled on the radius sphere, not on the displaced surface, so a height depends on
+// the direction only. With an ocean the water surface is the sphere of radius
+// radiusM + seaLevelM; the ground is under water where height(d) < seaLevelM.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "noise/noise_settings.h"
+
+namespace planet {
+
+struct NoiseLayer {
+  std::string name;            // unique within a planet, shown in logs and reports
+  noise::NoiseSettings noise;  // type, octaves, lacunarity, H, offset, gain, seed, hash
+  double frequency = 1.0;      // noise cycles per metre at octave 0 (noise input = p * frequency)
+  double amplitudeM = 1.0;     // metres of height per unit of noise value (negative inverts)
+};
+
+// How the renderer colours the ground; each scheme has its own default palette (defaultColors).
+enum class ColorScheme {
+  Earth,     // water, beach, vegetation to bare highland by height, rock on slopes, snow, ice caps
+  Altitude,  // debug ramp by height (the palette's lowland -> highland -> snow)
+  Moon,      // grey regolith: dark maria low, bright highlands high
+  Mars,      // red dust and dark basalt, polar caps
+};
+
+// Colours are linear RGB in [0, 1] (not sRGB: a picker's 0.5 is about 0.21 here).
+struct PlanetColors {
+  ColorScheme scheme = ColorScheme::Earth;
+  double beachHeightM = 0.0;        // ground up to this height above sea level is beach (0: none)
+  double snowLineM = 1e5;           // ground above this height is snow (the range's top: none)
+  double iceCapLatitudeDeg = 90.0;  // ice poleward of this latitude (90: no caps)
+  glm::vec3 deepWater{0.0f};        // ocean far below sea level (unused without an ocean)
+  glm::vec3 shallowWater{0.0f};     // ocean near the coast (unused without an ocean)
+  glm::vec3 beach{0.0f};            // the band between sea level and beachHeightM
+  glm::vec3 lowland{0.0f};          // low ground (vegetation, maria, basalt)
+  glm::vec3 highland{0.0f};         // high ground
+  glm::vec3 cliff{0.0f};            // steep slopes at any height
+  glm::vec3 snow{0.0f};             // snow above the snow line and ice caps
+};
+
+struct PlanetDescription {
+  std::string name;
+  double radiusM = 0.0;            // radius of the sphere the heights are measured from
+  bool hasOcean = false;           // false for airless or dry bodies: no water is drawn
+  double seaLevelM = 0.0;          // water surface above the radius sphere (0 without an ocean)
+  double heightScale = 1.0;        // vertical exaggeration: multiplies every height (1: true scale)
+  double baseHeightM = 0.0;        // constant added to the layer sum (moves the coastline)
+  std::vector<NoiseLayer> layers;  // summed; at least one
+  PlanetColors colors;
+};
+
+// A closed interval [min, max]; every bound the parser checks is one of the constants below.
+struct Range {
+  double min;
+  double max;
+};
+inline constexpr Range kRadiusRangeM{1e3, 1e8};
+inline constexpr Range kSeaLevelRangeM{-2e4, 2e4};
+inline constexpr Range kHeightScaleRange{0.0, 100.0};
+inline constexpr Range kBaseHeightRangeM{-1e5, 1e5};
+inline constexpr Range kFrequencyRange{1e-9, 10.0};  // cycles per metre
+inline constexpr Range kWavelengthRangeM{0.1, 1e9};  // 1 / kFrequencyRange
+inline constexpr Range kAmplitudeRangeM{-1e5, 1e5};
+inline constexpr Range kSeedRange{0.0, 4294967295.0};
+inline constexpr Range kBeachHeightRangeM{0.0, 1e3};
+inline constexpr Range kSnowLineRangeM{-1e5, 1e5};
+inline constexpr Range kIceCapLatitudeRangeDeg{0.0, 90.0};
+inline constexpr Range kColorComponentRange{0.0, 1.0};
+inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
+inline constexpr size_t kMaxNameBytes = 64;         // planet and layer names
+inline constexpr size_t kMaxPresetBytes = 1 << 20;  // a preset file larger than this is an error
+
+inline constexpr std::string_view kDefaultPresetName = "earth";
+
+const char* colorSchemeName(ColorScheme scheme);
+// "earth", "altitude", "moon", "mars"; throws planet::Error naming the bad value.
+ColorScheme parseColorScheme(std::string_view name);
+// The palette and bands a scheme uses when a preset leaves them out.
+PlanetColors defaultColors(ColorScheme scheme);
+
+// Parse a TOML document; `sourceName` starts every message ("earth.toml:12: ..."). Throws
+// planet::Error with a single-line message for any syntax error, unknown or missing key,
+// wrong type, non-finite or out-of-range value, non-UTF-8 or empty input.
+PlanetDescription parsePlanetDescription(std::string_view toml, const std::string& sourceName);
+// Reads and parses a file; messages start with `path`.
+PlanetDescription loadPlanetDescription(const std::string& path);
+
+// A preset compiled into the binary (the files of engine/planet/presets).
+struct EmbeddedPreset {
+  const char* name;  // "earth"
+  const char* text;  // the whole TOML file
+};
+std::span<const EmbeddedPreset> embeddedPresets();
+// Names of the built-in presets, in embedding order.
+std::vector<std::string> presetNames();
+// A FILE (ends in ".toml" or contains '/') is loaded; anything else is a built-in NAME, whose
+// messages are attributed to "NAME.toml".
+PlanetDescription resolvePreset(const std::string& nameOrFile);
+
+// Deterministic text of every field (offset and gain resolved to the values used), one
+// "key=value" per line, numbers in shortest round-trip form: the input of descriptionHash.
+std::string canonicalForm(const PlanetDescription& description);
+// 64-bit FNV-1a of canonicalForm: equal for descriptions that render the same terrain and
+// colours (and carry the same names), stable across runs, compilers and machines.
+uint64_t descriptionHash(const PlanetDescription& description);
+uint64_t fnv1a64(std::string_view bytes);
+
+}  // namespace planet

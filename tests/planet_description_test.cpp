@@ -1,0 +1,431 @@
+// Planet descriptions: the built-in presets, every class of bad input as one exact line,
+// preset resolution by name and by file, and the description hash.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "planet/planet_description.h"
+
+namespace planet {
+namespace {
+
+// A small valid document; the tests below edit one line of it. Line numbers matter:
+// 1 comment, 2 [planet], 4 radius_m, 8 scheme, 10 [[layer]], 13 octaves, 15 amplitude_m.
+constexpr std::string_view kMinimal = R"(# test planet
+[planet]
+name = "Test"
+radius_m = 1_000_000
+has_ocean = false
+
+[colors]
+scheme = "altitude"
+
+[[layer]]
+name = "base"
+type = "fbm"
+octaves = 4
+frequency = 1e-6
+amplitude_m = 1000
+)";
+
+// kMinimal with the first occurrence of `from` replaced by `to` (which must exist).
+std::string edit(std::string_view from, std::string_view to, std::string_view text = kMinimal) {
+  std::string out(text);
+  size_t at = out.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) out.replace(at, from.size(), to);
+  return out;
+}
+
+// The message of the planet::Error that `fn` throws ("" if it does not throw); any other
+// exception fails the test.
+template <typename Fn>
+std::string errorOf(Fn fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The error of parsing `text` as "x.toml", checked to be a single line.
+std::string parseError(std::string_view text, const std::string& source = "x.toml") {
+  std::string message = errorOf([&] { parsePlanetDescription(text, source); });
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  return message;
+}
+
+// kMinimal without its [[layer]] table.
+std::string withoutLayers() { return std::string(kMinimal.substr(0, kMinimal.find("[[layer]]"))); }
+
+// The embedded TOML text of a built-in preset.
+std::string presetText(std::string_view name) {
+  for (const EmbeddedPreset& preset : embeddedPresets())
+    if (name == preset.name) return preset.text;
+  ADD_FAILURE() << "no built-in preset " << name;
+  return "";
+}
+
+bool startsWith(const std::string& text, std::string_view prefix) { return text.starts_with(prefix); }
+
+TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
+  std::vector<std::string> names = presetNames();
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"earth", "mars", "moon"}));
+  EXPECT_EQ(resolvePreset(std::string(kDefaultPresetName)).name, "Earth");
+  struct Expected {
+    const char* name;
+    double radiusM;
+    bool hasOcean;
+    ColorScheme scheme;
+  };
+  for (const Expected& e :
+       {Expected{"earth", 6371000.0, true, ColorScheme::Earth}, Expected{"moon", 1737400.0, false, ColorScheme::Moon},
+        Expected{"mars", 3389500.0, false, ColorScheme::Mars}}) {
+    PlanetDescription d = resolvePreset(e.name);
+    EXPECT_EQ(d.radiusM, e.radiusM) << e.name;
+    EXPECT_EQ(d.hasOcean, e.hasOcean) << e.name;
+    EXPECT_EQ(d.colors.scheme, e.scheme) << e.name;
+    EXPECT_GE(d.layers.size(), 2u) << e.name;
+    EXPECT_EQ(d.heightScale, 1.0) << e.name;
+  }
+}
+
+TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
+  PlanetDescription d = resolvePreset("earth");
+  EXPECT_EQ(d.name, "Earth");
+  EXPECT_EQ(d.seaLevelM, 0.0);
+  EXPECT_EQ(d.colors.snowLineM, 3500.0);
+  EXPECT_EQ(d.colors.iceCapLatitudeDeg, 70.0);
+  ASSERT_EQ(d.layers.size(), 3u);
+  const NoiseLayer& continents = d.layers[0];
+  const NoiseLayer& mountains = d.layers[1];
+  const NoiseLayer& detail = d.layers[2];
+  // Continents: thousands of km; mountains: ridged, hundreds of km, a few km high.
+  EXPECT_GT(1.0 / continents.frequency, 1e6);
+  EXPECT_EQ(mountains.noise.type, noise::NoiseType::Ridged);
+  EXPECT_GT(1.0 / mountains.frequency, 1e5);
+  EXPECT_LT(1.0 / mountains.frequency, 1e6);
+  EXPECT_GE(mountains.amplitudeM, 1000.0);
+  // Detail: its finest octave is below a metre.
+  double finestM = 1.0 / detail.frequency / std::pow(detail.noise.lacunarity, detail.noise.octaves - 1);
+  EXPECT_LT(finestM, 1.0);
+  EXPECT_GE(detail.noise.octaves, 20);
+}
+
+TEST(PlanetDescription, PresetsAreVisiblyDifferent) {
+  PlanetDescription earth = resolvePreset("earth"), moon = resolvePreset("moon"), mars = resolvePreset("mars");
+  EXPECT_NE(descriptionHash(earth), descriptionHash(moon));
+  EXPECT_NE(descriptionHash(earth), descriptionHash(mars));
+  EXPECT_NE(descriptionHash(moon), descriptionHash(mars));
+  EXPECT_NE(earth.colors.lowland, mars.colors.lowland);
+  EXPECT_GT(mars.colors.highland.x, 2.0f * mars.colors.highland.z);            // red
+  for (const glm::vec3& grey : {moon.colors.lowland, moon.colors.highland}) {  // grey, to 10 %
+    EXPECT_NEAR(grey.x, grey.y, 0.1f * grey.x);
+    EXPECT_NEAR(grey.x, grey.z, 0.1f * grey.x);
+  }
+}
+
+TEST(PlanetDescription, OptionalKeysTakeTheirDocumentedDefaults) {
+  PlanetDescription d = parsePlanetDescription(kMinimal, "x.toml");
+  EXPECT_EQ(d.name, "Test");
+  EXPECT_EQ(d.seaLevelM, 0.0);
+  EXPECT_EQ(d.heightScale, 1.0);
+  EXPECT_EQ(d.baseHeightM, 0.0);
+  ASSERT_EQ(d.layers.size(), 1u);
+  const noise::NoiseSettings& n = d.layers[0].noise;
+  EXPECT_EQ(n.type, noise::NoiseType::Fbm);
+  EXPECT_EQ(n.octaves, 4);
+  EXPECT_EQ(n.lacunarity, 2.0);
+  EXPECT_EQ(n.H, 1.0);
+  EXPECT_FALSE(n.offset.has_value());
+  EXPECT_FALSE(n.gain.has_value());
+  EXPECT_EQ(n.seed, 0u);
+  EXPECT_EQ(n.hash, noise::NoiseHash::Fast);
+  EXPECT_EQ(d.layers[0].frequency, 1e-6);
+  EXPECT_EQ(d.layers[0].amplitudeM, 1000.0);
+  PlanetColors defaults = defaultColors(ColorScheme::Altitude);
+  EXPECT_EQ(d.colors.scheme, ColorScheme::Altitude);
+  EXPECT_EQ(d.colors.snow, defaults.snow);
+  EXPECT_EQ(d.colors.snowLineM, defaults.snowLineM);
+  EXPECT_EQ(d.colors.iceCapLatitudeDeg, 90.0);
+}
+
+TEST(PlanetDescription, ExplicitValuesAreRead) {
+  std::string text = edit("has_ocean = false", "has_ocean = true\nsea_level_m = -12.5\nheight_scale = 3");
+  text = edit("scheme = \"altitude\"", "scheme = \"mars\"\nsnow = [1, 0.5, 0.25]\nice_cap_latitude_deg = 85", text);
+  text = edit("frequency = 1e-6", "wavelength_m = 250_000\nseed = 4294967295\nhash = \"reference\"\nH = 0.5", text);
+  PlanetDescription d = parsePlanetDescription(text, "x.toml");
+  EXPECT_TRUE(d.hasOcean);
+  EXPECT_EQ(d.seaLevelM, -12.5);
+  EXPECT_EQ(d.heightScale, 3.0);
+  EXPECT_EQ(d.colors.scheme, ColorScheme::Mars);
+  EXPECT_EQ(d.colors.snow, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(d.colors.iceCapLatitudeDeg, 85.0);
+  EXPECT_EQ(d.colors.lowland, defaultColors(ColorScheme::Mars).lowland);
+  EXPECT_DOUBLE_EQ(d.layers[0].frequency, 4e-6);
+  EXPECT_EQ(d.layers[0].noise.seed, 4294967295u);
+  EXPECT_EQ(d.layers[0].noise.hash, noise::NoiseHash::Reference);
+  EXPECT_EQ(d.layers[0].noise.H, 0.5);
+}
+
+TEST(PlanetDescription, UnknownKeysAndTablesNameTheKeyAndLine) {
+  EXPECT_EQ(parseError(edit("radius_m", "radus_m"), "earth.toml"), "earth.toml:4: unknown key 'radus_m' in [planet]");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octave = 4")), "x.toml:13: unknown key 'octave' in [[layer]]");
+  EXPECT_EQ(parseError(edit("scheme", "schema")), "x.toml:8: unknown key 'schema' in [colors]");
+  EXPECT_EQ(parseError(std::string(kMinimal) + "[atmosphere]\nheight_m = 1\n"),
+            "x.toml:16: unknown table [atmosphere]");
+  EXPECT_EQ(parseError("seed = 1\n" + std::string(kMinimal)), "x.toml:1: unknown key 'seed' at top level");
+  EXPECT_EQ(parseError(edit("[colors]", "[planet.extra]\nx = 1\n[colors]")),
+            "x.toml:7: unknown key 'extra' in [planet]");
+}
+
+TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = \"4\""), "earth.toml"),
+            "earth.toml:13: 'octaves' must be an integer, got string");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4.0")), "x.toml:13: 'octaves' must be an integer, got float");
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000", "radius_m = \"big\"")),
+            "x.toml:4: 'radius_m' must be a number, got string");
+  EXPECT_EQ(parseError(edit("has_ocean = false", "has_ocean = 0")),
+            "x.toml:5: 'has_ocean' must be a boolean, got integer");
+  EXPECT_EQ(parseError(edit("name = \"Test\"", "name = 7")), "x.toml:3: 'name' must be a string, got integer");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = [1, 1]")),
+            "x.toml:9: 'snow' must be an array of 3 numbers [r, g, b], got 2 elements");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = \"white\"")),
+            "x.toml:9: 'snow' must be an array of 3 numbers [r, g, b], got string");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = [1, \"x\", 1]")),
+            "x.toml:9: snow[1] must be a number, got string");
+  EXPECT_EQ(parseError("colors = 3\n" + edit("[colors]\nscheme = \"altitude\"\n", "")),
+            "x.toml:1: 'colors' must be a table, got integer");
+  EXPECT_EQ(parseError("layer = 5\n" + withoutLayers()),
+            "x.toml:1: 'layer' must be an array of tables ([[layer]]), got integer");
+  EXPECT_EQ(parseError("layer = [1, 2]\n" + withoutLayers()),
+            "x.toml:1: 'layer' must be an array of tables ([[layer]]), got an array of values");
+  EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
+            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero or cascade)");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
+            "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
+}
+
+TEST(PlanetDescription, OutOfRangeValuesNameKeyLineRangeAndValue) {
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000", "radius_m = -5"), "moon.toml"),
+            "moon.toml:4: radius_m must be in [1000, 1e8], got -5");
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000", "radius_m = 2.5e8")),
+            "x.toml:4: radius_m must be in [1000, 1e8], got 2.5e8");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 40")), "x.toml:13: octaves must be in [1, 32], got 40");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 0")), "x.toml:13: octaves must be in [1, 32], got 0");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4\nseed = -1")),
+            "x.toml:14: seed must be in [0, 4294967295], got -1");
+  EXPECT_EQ(parseError(edit("frequency = 1e-6", "frequency = 0")), "x.toml:14: frequency must be in [1e-9, 10], got 0");
+  EXPECT_EQ(parseError(edit("frequency = 1e-6", "wavelength_m = 0.01")),
+            "x.toml:14: wavelength_m must be in [0.1, 1e9], got 0.01");
+  EXPECT_EQ(parseError(edit("amplitude_m = 1000", "amplitude_m = 1e6")),
+            "x.toml:15: amplitude_m must be in [-1e5, 1e5], got 1e6");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nice_cap_latitude_deg = 91")),
+            "x.toml:9: ice_cap_latitude_deg must be in [0, 90], got 91");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = [1, 1.5, 0]")),
+            "x.toml:9: snow[1] must be in [0, 1], got 1.5");
+  EXPECT_EQ(parseError(edit("has_ocean = false", "has_ocean = false\nheight_scale = -1")),
+            "x.toml:6: height_scale must be in [0, 100], got -1");
+}
+
+TEST(PlanetDescription, NoiseRangesComeFromNoiseSettingsAtTheLayerLine) {
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4\nlacunarity = 0.5")),
+            "x.toml:10: layer 'base': lacunarity must be in (1, 8], got 0.5");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4\nH = -1")),
+            "x.toml:10: layer 'base': H must be in [0, 4], got -1");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4\ngain = 17")),
+            "x.toml:10: layer 'base': gain must be in [0, 16], got 17");
+}
+
+TEST(PlanetDescription, CrossKeyRulesAreEnforced) {
+  EXPECT_EQ(parseError(edit("has_ocean = false", "has_ocean = false\nsea_level_m = 10")),
+            "x.toml:6: sea_level_m needs has_ocean = true");
+  EXPECT_EQ(parseError(edit("frequency = 1e-6", "frequency = 1e-6\nwavelength_m = 1e6")),
+            "x.toml:15: give either frequency or wavelength_m in [[layer]], not both");
+  std::string layer(kMinimal.substr(kMinimal.find("[[layer]]")));
+  EXPECT_EQ(parseError(std::string(kMinimal) + layer), "x.toml:16: duplicate layer name 'base' (first at line 10)");
+  std::string many(kMinimal);
+  for (int i = 1; i <= kMaxLayers; ++i) many += edit("name = \"base\"", "name = \"l" + std::to_string(i) + "\"", layer);
+  EXPECT_EQ(parseError(many), "x.toml:58: at most 8 [[layer]] tables, got 9");
+  EXPECT_EQ(parseError(edit("name = \"Test\"", "name = \"\"")), "x.toml:3: name must be 1 to 64 bytes long, got 0");
+  EXPECT_EQ(parseError(edit("name = \"Test\"", "name = \"a\\tb\"")),
+            "x.toml:3: name must not contain control characters");
+  EXPECT_EQ(parseError("layer = []\n" + withoutLayers()), "x.toml:1: at least one [[layer]] is required");
+}
+
+TEST(PlanetDescription, MissingKeysNameTheKeyAndTable) {
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000\n", "")), "x.toml:2: missing key 'radius_m' in [planet]");
+  EXPECT_EQ(parseError(edit("has_ocean = false\n", "")), "x.toml:2: missing key 'has_ocean' in [planet]");
+  EXPECT_EQ(parseError(edit("octaves = 4\n", "")), "x.toml:10: missing key 'octaves' in [[layer]]");
+  EXPECT_EQ(parseError(edit("amplitude_m = 1000\n", "")), "x.toml:10: missing key 'amplitude_m' in [[layer]]");
+  EXPECT_EQ(parseError(edit("frequency = 1e-6\n", "")),
+            "x.toml:10: missing key 'frequency' (or 'wavelength_m') in [[layer]]");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"\n", "")), "x.toml:7: missing key 'scheme' in [colors]");
+  EXPECT_EQ(parseError(edit("[colors]\nscheme = \"altitude\"\n", "")), "x.toml: missing table [colors]");
+  EXPECT_EQ(parseError(withoutLayers()), "x.toml: missing table [[layer]] (at least one noise layer)");
+  EXPECT_EQ(parseError("# only a comment\n"), "x.toml: missing table [planet]");
+}
+
+TEST(PlanetDescription, SyntaxErrorsGiveLineColumnAndTheParsersMessage) {
+  std::string message = parseError(edit("octaves = 4", "octaves = "));
+  EXPECT_TRUE(startsWith(message, "x.toml:13:11: ")) << message;
+  EXPECT_GT(message.size(), std::string("x.toml:13:11: ").size());
+  message = parseError(edit("[colors]", "[colors"));
+  EXPECT_TRUE(startsWith(message, "x.toml:7:")) << message;
+  message = parseError(std::string(kMinimal) + "[planet]\n");
+  EXPECT_TRUE(startsWith(message, "x.toml:16:")) << message;
+  EXPECT_NE(message.find("planet"), std::string::npos) << message;
+}
+
+TEST(PlanetDescription, NanAndInfinityAreRejected) {
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000", "radius_m = nan")),
+            "x.toml:4: radius_m must be a finite number, got nan");
+  EXPECT_EQ(parseError(edit("amplitude_m = 1000", "amplitude_m = -inf")),
+            "x.toml:15: amplitude_m must be a finite number, got -inf");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4\nlacunarity = inf")),
+            "x.toml:10: layer 'base': lacunarity must be a finite number, got inf");
+  EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = [nan, 0, 0]")),
+            "x.toml:9: snow[0] must be in [0, 1], got nan");
+}
+
+TEST(PlanetDescription, HugeNumbersAreRejected) {
+  // Beyond double or int64: the TOML parser's own message, with the line.
+  EXPECT_TRUE(startsWith(parseError(edit("radius_m = 1_000_000", "radius_m = 1e400")), "x.toml:4:"));
+  EXPECT_TRUE(startsWith(parseError(edit("octaves = 4", "octaves = 99999999999999999999")), "x.toml:13:"));
+  // Representable but absurd: the range check (an int64 octave count is not truncated to int).
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 9223372036854775807")),
+            "x.toml:13: octaves must be in [1, 32], got 9223372036854775807");
+  EXPECT_EQ(parseError(edit("octaves = 4", "octaves = 4294967300")),
+            "x.toml:13: octaves must be in [1, 32], got 4294967300");
+  EXPECT_EQ(parseError(edit("radius_m = 1_000_000", "radius_m = 1.7e308")),
+            "x.toml:4: radius_m must be in [1000, 1e8], got 1.7e308");
+}
+
+TEST(PlanetDescription, EmptyInputIsRejected) {
+  const std::string expected = "x.toml: empty document (expected [planet], [colors] and [[layer]] tables)";
+  EXPECT_EQ(parseError(""), expected);
+  EXPECT_EQ(parseError(" \n\t\r\n"), expected);
+}
+
+TEST(PlanetDescription, BinaryAndNonUtf8InputIsRejected) {
+  EXPECT_EQ(parseError(std::string("\0\0\0\0", 4)), "x.toml:1:1: not TOML text (control byte 0x00)");
+  EXPECT_EQ(parseError(edit("\"Test\"", std::string("\"Te\0st\"", 7))),
+            "x.toml:3:11: not TOML text (control byte 0x00)");
+  EXPECT_EQ(parseError(edit("\"Test\"", "\"Te\xffst\"")), "x.toml:3:11: not UTF-8 text (invalid byte 0xff)");
+  EXPECT_EQ(parseError("\x89PNG\r\n\x1a\n"), "x.toml:1:1: not UTF-8 text (invalid byte 0x89)");
+  EXPECT_EQ(parseError("\xc0\xaf"), "x.toml:1:1: not UTF-8 text (invalid byte 0xc0)");          // overlong '/'
+  EXPECT_EQ(parseError("\xed\xa0\x80"), "x.toml:1:1: not UTF-8 text (invalid byte 0xed)");      // surrogate
+  EXPECT_EQ(parseError("a = \"\xe2\x82\""), "x.toml:1:6: not UTF-8 text (invalid byte 0xe2)");  // truncated
+  // Valid multi-byte UTF-8 is accepted, and columns count characters.
+  EXPECT_EQ(parsePlanetDescription(edit("\"Test\"", "\"Terre \xc3\xa9\xe2\x82\xac\""), "x.toml").name,
+            "Terre \xc3\xa9\xe2\x82\xac");
+  std::mt19937 random(7);
+  std::string garbage(4096, '\0');
+  for (char& c : garbage) c = char(random());
+  std::string message = parseError(garbage);
+  EXPECT_TRUE(startsWith(message, "x.toml:")) << message;
+  EXPECT_NE(message.find("not UTF-8 text"), std::string::npos) << message;
+}
+
+// Any byte sequence either parses or throws planet::Error with one line: truncations and
+// random byte changes of the largest preset.
+TEST(PlanetDescription, DamagedPresetsOnlyEverThrowOneLineErrors) {
+  std::string earth = presetText("earth");
+  int failures = 0;
+  for (size_t length = 0; length < earth.size(); length += 7) {
+    std::string message = errorOf([&] { parsePlanetDescription(earth.substr(0, length), "e.toml"); });
+    failures += !message.empty();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    std::string damaged = earth;
+    for (int k = 0; k < 3; ++k) damaged[random() % damaged.size()] = char(random());
+    std::string message = errorOf([&] { parsePlanetDescription(damaged, "e.toml"); });
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_GT(failures, 0);
+}
+
+TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
+  EXPECT_EQ(resolvePreset("moon").name, "Moon");
+  EXPECT_EQ(errorOf([] { resolvePreset("venus"); }),
+            "unknown planet preset 'venus' (built-in: earth, moon, mars; or a FILE.toml)");
+
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("planet_description_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto write = [&](const std::string& fileName, const std::string& text) {
+    std::string path = (dir / fileName).string();
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    EXPECT_NE(file, nullptr);
+    if (file) {
+      std::fwrite(text.data(), 1, text.size(), file);
+      std::fclose(file);
+    }
+    return path;
+  };
+  std::string good = write("custom.toml", edit("\"Earth\"", "\"Custom\"", presetText("earth")));
+  PlanetDescription custom = resolvePreset(good);
+  EXPECT_EQ(custom.name, "Custom");
+  EXPECT_EQ(custom.radiusM, 6371000.0);
+  EXPECT_EQ(custom.layers.size(), resolvePreset("earth").layers.size());
+  // A path without the .toml extension is a file too (it contains '/'); its errors name it.
+  std::string bad = write("bad", edit("radius_m = 1_000_000", "radius_m = -5"));
+  EXPECT_EQ(errorOf([&] { resolvePreset(bad); }), bad + ":4: radius_m must be in [1000, 1e8], got -5");
+  // A built-in's errors would name NAME.toml, and a missing file names its path.
+  EXPECT_EQ(errorOf([] { resolvePreset("no_such_planet.toml"); }),
+            "cannot read 'no_such_planet.toml': No such file or directory");
+  EXPECT_EQ(errorOf([&] { loadPlanetDescription(dir.string()); }),
+            "cannot read '" + dir.string() + "': Is a directory");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(PlanetDescription, DescriptionHashIsStableAndSeesEveryChange) {
+  EXPECT_EQ(fnv1a64(""), 0xcbf29ce484222325ull);  // published FNV-1a 64 test vectors
+  EXPECT_EQ(fnv1a64("a"), 0xaf63dc4c8601ec8cull);
+  EXPECT_EQ(fnv1a64("foobar"), 0x85944171f73967e8ull);
+
+  PlanetDescription earth = resolvePreset("earth");
+  EXPECT_EQ(descriptionHash(earth), descriptionHash(resolvePreset("earth")));
+  EXPECT_EQ(descriptionHash(earth), fnv1a64(canonicalForm(earth)));
+  // Equal meaning, equal hash: a default written out equals the default left out.
+  EXPECT_EQ(
+      descriptionHash(parsePlanetDescription(kMinimal, "x.toml")),
+      descriptionHash(parsePlanetDescription(edit("octaves = 4", "octaves = 4\noffset = 0\ngain = 2"), "y.toml")));
+
+  const uint64_t base = descriptionHash(earth);
+  auto changed = [&](auto change) {
+    PlanetDescription d = earth;
+    change(d);
+    return descriptionHash(d);
+  };
+  EXPECT_NE(changed([](PlanetDescription& d) { d.radiusM += 1.0; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.hasOcean = false; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.seaLevelM = 1.0; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.heightScale = 2.0; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.baseHeightM += 0.5; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.colors.snow.x *= 0.5f; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.colors.scheme = ColorScheme::Altitude; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers[2].noise.seed += 1; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers[2].noise.octaves -= 1; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers[1].noise.gain = 2.5; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers[1].frequency *= 1.0 + 1e-15; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers[0].amplitudeM = -d.layers[0].amplitudeM; }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { std::swap(d.layers[0], d.layers[1]); }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.layers.pop_back(); }), base);
+  EXPECT_NE(changed([](PlanetDescription& d) { d.name = "Earth2"; }), base);
+}
+
+}  // namespace
+}  // namespace planet
