@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -103,6 +104,11 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"validate --points 1e12", "", "--points"},
       {"bench noise --octaves 33", "", "--octaves must be in 1..32, got 33"},
       {"bench noise --repeats 2", "", "--repeats must be in 5..1000, got 2"},
+      {"height --at 95,0", "", "latitude must be in [-90, 90] degrees, got 95"},
+      {"height --at 45", "", "--at expects LAT,LON in degrees, got '45'"},
+      {"height --at 1,2 --count 0", "", "--count must be in 1..1000000, got 0"},
+      {"height --at 1,2 --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"height --at 1,2 --step-m -1", "", "--step-m must be in [0, 1e8], got -1"},
       {"frobnicate", "", "frobnicate"},
       {"", "", "a command is required"},
       {"bench", "", "a command is required"},
@@ -115,6 +121,18 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
     EXPECT_NE(run.err.find(c.mustContain), std::string::npos) << c.args << "\n" << run.err;
     EXPECT_EQ(run.out, "") << c.args << ": nothing may be printed on an error";
   }
+}
+
+TEST(Cli, HeightPrintsOneHeightPerSampleInMetres) {
+  CommandResult run = planet("height --preset earth --at 30,40 --bearing 90 --step-m 1000 --count 4");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::istringstream lines(run.out);
+  std::vector<double> heights{std::istream_iterator<double>(lines), std::istream_iterator<double>()};
+  ASSERT_EQ(heights.size(), 4u);
+  for (double h : heights) EXPECT_TRUE(h > -15000 && h < 12000) << h;
+  // The first sample is the start point itself.
+  CommandResult single = planet("height --at 30,40");
+  EXPECT_EQ(single.out, run.out.substr(0, run.out.find('\n') + 1));
 }
 
 TEST(Cli, GpuBackendPrintsTheSameValuesAsTheCpuReference) {

@@ -1,0 +1,81 @@
+// planet height: terrain heights of a preset along a great circle (CPU double reference).
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "core/error.h"
+#include "planet/terrain_height.h"
+
+namespace planet::cli {
+namespace {
+
+constexpr size_t kMaxHeightSamples = 1'000'000;
+
+struct HeightCommand {
+  std::string preset{kDefaultPresetName};
+  std::string at;
+  double bearingDeg = 0.0;
+  double stepM = 1.0;
+  size_t count = 1;
+};
+
+// "LAT,LON" in degrees.
+glm::dvec2 parseLatLon(const std::string& text) {
+  size_t comma = text.find(',');
+  double values[2];
+  std::string_view parts[2] = {std::string_view(text).substr(0, comma), comma == std::string::npos
+                                                                            ? std::string_view()
+                                                                            : std::string_view(text).substr(comma + 1)};
+  for (int i = 0; i < 2; ++i) {
+    auto [ptr, ec] = std::from_chars(parts[i].data(), parts[i].data() + parts[i].size(), values[i]);
+    if (comma == std::string::npos || ec != std::errc() || ptr != parts[i].data() + parts[i].size() ||
+        !std::isfinite(values[i]))
+      throw UsageError("--at expects LAT,LON in degrees, got '" + text + "'");
+  }
+  return {values[0], values[1]};
+}
+
+int runHeight(const HeightCommand& cmd) {
+  if (cmd.count < 1 || cmd.count > kMaxHeightSamples)
+    throw UsageError(fmt::format("--count must be in 1..{}, got {}", kMaxHeightSamples, cmd.count));
+  if (!std::isfinite(cmd.stepM) || cmd.stepM < 0.0 || cmd.stepM > 1e8)
+    throw UsageError(fmt::format("--step-m must be in [0, 1e8], got {}", cmd.stepM));
+  if (!std::isfinite(cmd.bearingDeg)) throw UsageError(fmt::format("--bearing must be finite, got {}", cmd.bearingDeg));
+  glm::dvec2 latLon = parseLatLon(cmd.at);
+  glm::dvec3 start;
+  PlanetDescription planet;
+  try {
+    start = directionFromLatLon(latLon.x, latLon.y);
+    planet = resolvePreset(cmd.preset);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  std::vector<double> heights = terrainHeightsAlong(planet, start, cmd.bearingDeg, cmd.stepM, cmd.count);
+  fmt::memory_buffer out;
+  for (double h : heights) fmt::format_to(std::back_inserter(out), "{:.4f}\n", h);
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
+
+}  // namespace
+
+void addHeightCommand(CLI::App& app, int& exitCode) {
+  auto cmd = std::make_shared<HeightCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "height",
+      "Terrain heights in metres above the radius sphere (CPU double reference), one per line, along a "
+      "great circle from --at");
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
+      ->capture_default_str();
+  sub->add_option("--at", cmd->at, "Start point LAT,LON in degrees")->required();
+  sub->add_option("--bearing", cmd->bearingDeg, "Direction of the line, degrees clockwise from north")
+      ->capture_default_str();
+  sub->add_option("--step-m", cmd->stepM, "Distance between samples in metres")->capture_default_str();
+  sub->add_option("--count", cmd->count, "Number of samples")->capture_default_str();
+  sub->callback([&exitCode, cmd] { exitCode = runHeight(*cmd); });
+}
+
+}  // namespace planet::cli

@@ -1,0 +1,56 @@
+// Compiled with -ffp-contract=off like the rest of the noise reference (engine/CMakeLists.txt).
+#include "planet/terrain_height.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "noise/noise_kernel.h"
+#include "noise/permutation.h"
+
+namespace planet {
+
+glm::dvec3 directionFromLatLon(double latitudeDeg, double longitudeDeg) {
+  if (!std::isfinite(latitudeDeg) || latitudeDeg < -90.0 || latitudeDeg > 90.0)
+    throw Error(fmt::format("latitude must be in [-90, 90] degrees, got {}", latitudeDeg));
+  if (!std::isfinite(longitudeDeg)) throw Error(fmt::format("longitude must be finite, got {}", longitudeDeg));
+  const double lat = latitudeDeg * std::numbers::pi / 180.0;
+  const double lon = longitudeDeg * std::numbers::pi / 180.0;
+  return {std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)};
+}
+
+glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double distanceM, double radiusM) {
+  // Local east and north at `start`; at a pole, "north" is taken along longitude 0 (+x).
+  const glm::dvec3 up = glm::normalize(start);
+  glm::dvec3 east = glm::cross(glm::dvec3(0.0, 0.0, 1.0), up);
+  east = glm::length(east) < 1e-12 ? glm::dvec3(0.0, 1.0, 0.0) : glm::normalize(east);
+  const glm::dvec3 north = glm::cross(up, east);
+  const double bearing = bearingDeg * std::numbers::pi / 180.0;
+  const glm::dvec3 heading = std::cos(bearing) * north + std::sin(bearing) * east;
+  const double angle = distanceM / radiusM;
+  return glm::normalize(std::cos(angle) * up + std::sin(angle) * heading);
+}
+
+double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction) {
+  double sum = planet.baseHeightM;
+  const glm::dvec3 onSphere = planet.radiusM * glm::normalize(direction);
+  for (const NoiseLayer& layer : planet.layers) {
+    noise::NoiseKernel<double> kernel;
+    kernel.permutation = noise::permutationTable(layer.noise.seed).data();
+    const gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    sum += layer.amplitudeM * kernel.evaluateNoise(params, onSphere * layer.frequency);
+  }
+  return planet.heightScale * sum;
+}
+
+std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,
+                                        double stepM, size_t count) {
+  std::vector<double> heights(count);
+  for (size_t i = 0; i < count; ++i)
+    heights[i] = terrainHeightM(planet, travelGreatCircle(start, bearingDeg, double(i) * stepM, planet.radiusM));
+  return heights;
+}
+
+}  // namespace planet

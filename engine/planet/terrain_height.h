@@ -1,0 +1,32 @@
+// Terrain height of a planet description at a point, evaluated by the CPU double-precision
+// reference of the shared noise (engine/noise/noise_kernel.h). This is the reference the GPU
+// terrain is checked against, and what `planet height` prints.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "planet/planet_description.h"
+
+namespace planet {
+
+// Planet frame: +z is the north pole, +x points at latitude 0 / longitude 0, +y at longitude
+// 90° east. Angles in degrees; throws planet::Error for a latitude outside [-90, 90] or a
+// non-finite value.
+glm::dvec3 directionFromLatLon(double latitudeDeg, double longitudeDeg);
+
+// The direction reached from `start` after travelling `distanceM` along the great circle with
+// initial `bearingDeg` (clockwise from north) on a sphere of radius `radiusM`.
+glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double distanceM, double radiusM);
+
+// Height in metres above the radius sphere at unit direction `direction`:
+//   heightScale * (baseHeightM + sum over layers of amplitudeM * noise(radiusM * direction * frequency)).
+// Every octave of every layer is evaluated (no octave limit): this is the full-detail surface.
+double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction);
+
+// Heights along a great circle: `count` samples `stepM` apart, starting at `start`.
+std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,
+                                        double stepM, size_t count);
+
+}  // namespace planet
