@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include "core/error.h"
 #include "planet/clipmap_mesh.h"
 
@@ -31,16 +33,7 @@ std::string describe(const ClipmapParams& p) {
   return "L=" + std::to_string(p.levels) + " m=" + std::to_string(p.ringsPerLevel) + " N=" + std::to_string(p.numPhi);
 }
 
-// The what() of the planet::Error thrown by fn, or "" when nothing is thrown.
-template <typename Fn>
-std::string thrownMessage(Fn fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 glm::dvec3 directionOf(const ClipmapMesh& mesh, uint32_t vertex) {
   const glm::vec4& d = mesh.vertices.at(vertex).direction;
@@ -395,12 +388,12 @@ TEST(ClipmapMesh, BadParametersThrowNamingTheParameterAndValue) {
       {{18, 16, 4097}, "numPhi must be in 3..4096, got 4097"},
   };
   for (const Case& c : cases) {
-    std::string message = thrownMessage([&] { buildClipmapMesh(c.params); });
+    std::string message = errorOf([&] { buildClipmapMesh(c.params); });
     EXPECT_NE(message.find(c.message), std::string::npos) << "got '" << message << "', wanted '" << c.message << "'";
     EXPECT_EQ(message.find('\n'), std::string::npos);
   }
-  EXPECT_EQ(thrownMessage([] { validateClipmapParams({1, 1, 3}); }), "");
-  EXPECT_EQ(thrownMessage([] {
+  EXPECT_EQ(errorOf([] { validateClipmapParams({1, 1, 3}); }), "");
+  EXPECT_EQ(errorOf([] {
               validateClipmapParams({kClipmapMaxLevels, kClipmapMaxRingsPerLevel, kClipmapMaxNumPhi});
             }),
             "");
@@ -408,15 +401,15 @@ TEST(ClipmapMesh, BadParametersThrowNamingTheParameterAndValue) {
 
 TEST(ClipmapMesh, OutOfRangeRingsAndThetasThrow) {
   ClipmapParams p{2, 3, 8};  // rings 0..5, pole 6
-  EXPECT_NE(thrownMessage([&] { clipmapRingTheta(p, 7); }).find("ring 7 is out of range 0..6"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapLevelOfRing(p, 7); }).find("ring 7"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapRingBandRange(p, 0, 7); }).find("lastRing 7"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapRingBandRange(p, 4, 3); }).find("firstRing 4 is after lastRing 3"),
+  EXPECT_NE(errorOf([&] { clipmapRingTheta(p, 7); }).find("ring 7 is out of range 0..6"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapLevelOfRing(p, 7); }).find("ring 7"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapRingBandRange(p, 0, 7); }).find("lastRing 7"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapRingBandRange(p, 4, 3); }).find("firstRing 4 is after lastRing 3"),
             std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapThetaBandRange(p, 0.5, 0.25); }).find("thetaMin"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapInnermostRingAtOrAbove(p, std::nan("")); }).find("NaN"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapOutermostRingAtOrBelow(p, std::nan("")); }).find("NaN"), std::string::npos);
-  EXPECT_NE(thrownMessage([&] { clipmapThetaBandRange(p, std::nan(""), 1.0); }).find("NaN"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapThetaBandRange(p, 0.5, 0.25); }).find("thetaMin"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapInnermostRingAtOrAbove(p, std::nan("")); }).find("NaN"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapOutermostRingAtOrBelow(p, std::nan("")); }).find("NaN"), std::string::npos);
+  EXPECT_NE(errorOf([&] { clipmapThetaBandRange(p, std::nan(""), 1.0); }).find("NaN"), std::string::npos);
   EXPECT_EQ(clipmapRingBandRange(p, 3, 3).indexCount, 0u);
 }
 

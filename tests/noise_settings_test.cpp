@@ -4,22 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include "core/error.h"
 #include "noise/noise_settings.h"
 
 namespace planet::noise {
 namespace {
 
-// The message of the planet::Error that `fn` throws ("" if it does not throw).
-template <typename Fn>
-std::string errorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(NoiseSettings, DefaultsMatchTheSpecification) {
   NoiseSettings s;

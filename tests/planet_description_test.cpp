@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include "core/error.h"
 #include "planet/planet_description.h"
 
@@ -45,17 +47,7 @@ std::string edit(std::string_view from, std::string_view to, std::string_view te
   return out;
 }
 
-// The message of the planet::Error that `fn` throws ("" if it does not throw); any other
-// exception fails the test.
-template <typename Fn>
-std::string errorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 // The error of parsing `text` as "x.toml", checked to be a single line.
 std::string parseError(std::string_view text, const std::string& source = "x.toml") {
