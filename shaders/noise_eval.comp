@@ -21,6 +21,9 @@ layout(std430, set = 0, binding = kNoiseBindingValues) writeonly buffer Values {
 layout(std430, set = 0, binding = kNoiseBindingPermutation) readonly buffer Permutation { uint permutation[]; };
 
 #define PERM(i) permutation[i]
+// Point evaluation only walks octaves plainly (never rebased).
+#define OCTAVE_REMAINDER(layer, i) vec4(0.0f)
+#define OCTAVE_SHIFT(layer, i) uvec4(0u)
 #include "common/noise.glsl"
 
 void main() {

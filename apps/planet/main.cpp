@@ -8,7 +8,6 @@
 
 #include "cli_common.h"
 #include "core/error.h"
-#include "core/log.h"
 
 int main(int argc, char** argv) {
   using namespace planet;

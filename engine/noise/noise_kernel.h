@@ -23,10 +23,15 @@ struct NoiseKernel {
   using real = Real;
   using vec3 = glm::vec<3, Real, glm::defaultp>;
   using uvec3 = glm::uvec3;
+  using vec4 = glm::vec<4, Real, glm::defaultp>;
+  using uvec4 = glm::uvec4;
   using uint = std::uint32_t;
 
   // The reference hash's 512-entry permutation table (permutationTable()); unused by the fast hash.
   const uint* permutation = nullptr;
+  // Rebased octave tables (OctaveWalk), kNoiseMaxOctaves entries per layer; unused by plain walks.
+  const glm::vec4* octaveRemainders = nullptr;
+  const glm::uvec4* octaveShifts = nullptr;
 
   // The GLSL builtins the shared code uses, for exactly this precision (no silent promotion
   // of float to double through a C library overload).
@@ -39,12 +44,18 @@ struct NoiseKernel {
 
 #define IN(T) const T&
 #define OUT(T) T&
+#define INOUT(T) T&
+#define OCTAVE_REMAINDER(layer, i) vec4(octaveRemainders[(layer)*kNoiseMaxOctaves + (i)])
+#define OCTAVE_SHIFT(layer, i) octaveShifts[(layer)*kNoiseMaxOctaves + (i)]
 #define NOISE_CONST static constexpr
 #define PRECISE  // C++: this file is compiled with -ffp-contract=off
 #define PERM(i) permutation[i]
 #include "common/noise.glsl"
 #undef IN
 #undef OUT
+#undef INOUT
+#undef OCTAVE_REMAINDER
+#undef OCTAVE_SHIFT
 #undef NOISE_CONST
 #undef PRECISE
 #undef PERM

@@ -4,8 +4,10 @@
 // inside engine/noise/noise_kernel.h, which is the CPU reference (float and double). Rules
 // (STYLE.md): `real` for every floating-point value, .x/.y/.z instead of swizzles, an `f`
 // suffix on every literal, explicit conversions, unsigned integer hashing only, no
-// sin/cos/exp/pow, IN()/OUT() for reference parameters. The includer provides `real`, `vec3`,
-// `uvec3`, NOISE_CONST, PERM(i) (the reference permutation table) and the scalar builtins.
+// sin/cos/exp/pow, IN()/OUT()/INOUT() for reference parameters. The includer provides `real`,
+// `vec3`, `vec4`, `uvec3`, `uvec4`, NOISE_CONST, PERM(i) (the reference permutation table),
+// OCTAVE_REMAINDER and OCTAVE_SHIFT (the rebased octave tables, see OctaveWalk) and the
+// scalar builtins.
 #ifndef PLANET_COMMON_NOISE_GLSL
 #define PLANET_COMMON_NOISE_GLSL
 
@@ -13,6 +15,7 @@
 #define real float
 #define IN(T) in T
 #define OUT(T) out T
+#define INOUT(T) inout T
 #define NOISE_CONST const
 // No multiply-add contraction or reassociation of these values (SPIR-V NoContraction): the
 // C++ side is compiled with -ffp-contract=off and both must round identically.
@@ -175,18 +178,58 @@ real simplexNoise(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
   return simplexWrapped(wrapPoint(p), shift, hashKind, seedMix);
 }
 
+// Where each octave is sampled. Plain: q_0 = wrapPoint(p), q_i = q_(i-1) * L, no lattice
+// shift. Rebased (Earth-scale terrain, DESIGN.md "Earth-scale precision"): the CPU splits the
+// anchor's position in octave i's units, in double, into an integer lattice shift (coordinates
+// summing to a multiple of 3, so the simplex skew stays integral) and a small float remainder;
+// the sample is then remainder_i + offset * scale_i, where offset = sample - anchor in metres
+// stays small near the camera. OCTAVE_REMAINDER(layer, i) gives (remainder, scale) and
+// OCTAVE_SHIFT(layer, i) the shift (as uvec4); the includer defines both.
+struct OctaveWalk {
+  vec3 q;           // plain: the next octave's point
+  real lacunarity;  // plain: L
+  vec3 offset;      // rebased: sample minus anchor, in metres
+  uint layer;       // rebased: row of the octave tables
+  uint octave;      // the next octave to sample
+  uint rebased;     // 0: plain, 1: rebased
+};
+
+OctaveWalk plainWalk(IN(NoiseParams) params, vec3 p) {
+  OctaveWalk walk;
+  walk.q = wrapPoint(p);
+  walk.lacunarity = real(params.lacunarity);
+  walk.offset = vec3(real(0.0f));
+  walk.layer = 0u;
+  walk.octave = 0u;
+  walk.rebased = 0u;
+  return walk;
+}
+
+// N at the walk's next octave, then advances the walk.
+real nextOctave(INOUT(OctaveWalk) walk, IN(NoiseParams) params) {
+  PRECISE real n;
+  if (walk.rebased != 0u) {
+    vec4 rs = OCTAVE_REMAINDER(walk.layer, walk.octave);
+    uvec4 shift = OCTAVE_SHIFT(walk.layer, walk.octave);
+    PRECISE vec3 q = vec3(rs.x + walk.offset.x * rs.w, rs.y + walk.offset.y * rs.w, rs.z + walk.offset.z * rs.w);
+    n = simplexWrapped(q, uvec3(shift.x, shift.y, shift.z), params.hash, params.seedMix);
+  } else {
+    n = simplexWrapped(walk.q, uvec3(0u), params.hash, params.seedMix);
+    walk.q = walk.q * walk.lacunarity;
+  }
+  walk.octave += 1u;
+  return n;
+}
+
 // The fractals below follow the formulas of issue 2 (Musgrave's definitions as given in
-// seed 002 §4.9-4.10), with p_i = p * L^i (p wrapped once, see kDomainPeriod) and
-// w_i = L^(-i*H).
+// seed 002 §4.9-4.10): octave i samples p * L^i (through the walk) with weight w_i = L^(-i*H).
 
 // fBm: sum of N(p_i) * w_i.
-real fbmNoise(IN(NoiseParams) params, vec3 p) {
+real fbmNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real sum = real(0.0f);
   PRECISE real w = real(1.0f);
-  vec3 q = wrapPoint(p);
   for (uint i = 0u; i < params.octaves; ++i) {
-    sum += simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) * w;
-    q = q * real(params.lacunarity);
+    sum += nextOctave(walk, params) * w;
     w *= real(params.octaveWeight);
   }
   return sum;
@@ -194,18 +237,16 @@ real fbmNoise(IN(NoiseParams) params, vec3 p) {
 
 // Ridged multifractal: s_0 = (offset - |N(p_0)|)^2; each next octave is weighted by the
 // previous one's signal times gain (clamped to [0, 1]), so ridges stay sharp and valleys smooth.
-real ridgedNoise(IN(NoiseParams) params, vec3 p) {
+real ridgedNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real offset = real(params.offset);
-  vec3 q = wrapPoint(p);
-  PRECISE real signal = offset - abs(simplexWrapped(q, uvec3(0u), params.hash, params.seedMix));
+  PRECISE real signal = offset - abs(nextOctave(walk, params));
   signal = signal * signal;
   PRECISE real result = signal;
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
     PRECISE real weight = clamp(signal * real(params.gain), real(0.0f), real(1.0f));
-    signal = offset - abs(simplexWrapped(q, uvec3(0u), params.hash, params.seedMix));
+    signal = offset - abs(nextOctave(walk, params));
     signal = signal * signal * weight;
     result += signal * w;
   }
@@ -214,17 +255,15 @@ real ridgedNoise(IN(NoiseParams) params, vec3 p) {
 
 // Hybrid multifractal: smooth low areas, rough peaks; each octave is weighted by the running
 // product of the previous signals.
-real hybridNoise(IN(NoiseParams) params, vec3 p) {
+real hybridNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real offset = real(params.offset);
-  vec3 q = wrapPoint(p);
-  PRECISE real result = simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset;
+  PRECISE real result = nextOctave(walk, params) + offset;
   PRECISE real weight = result;
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
     weight = clamp(weight, real(0.0f), real(1.0f));
-    PRECISE real signal = (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w;
+    PRECISE real signal = (nextOctave(walk, params) + offset) * w;
     result += weight * signal;
     weight *= signal;
   }
@@ -233,39 +272,39 @@ real hybridNoise(IN(NoiseParams) params, vec3 p) {
 
 // Heterogeneous terrain: each octave is scaled by the value so far, so heights vary in
 // roughness with altitude.
-real heteroNoise(IN(NoiseParams) params, vec3 p) {
+real heteroNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real offset = real(params.offset);
-  vec3 q = wrapPoint(p);
-  PRECISE real value = offset + simplexWrapped(q, uvec3(0u), params.hash, params.seedMix);
+  PRECISE real value = offset + nextOctave(walk, params);
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
-    q = q * real(params.lacunarity);
     w *= real(params.octaveWeight);
-    value += (simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + offset) * w * value;
+    value += (nextOctave(walk, params) + offset) * w * value;
   }
   return value;
 }
 
 // Multiplicative cascade: product of (N(p_i) + offset). Seed 002's amplitude division cancels
 // out, so H has no effect here.
-real cascadeNoise(IN(NoiseParams) params, vec3 p) {
+real cascadeNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real value = real(1.0f);
-  vec3 q = wrapPoint(p);
-  for (uint i = 0u; i < params.octaves; ++i) {
-    value *= simplexWrapped(q, uvec3(0u), params.hash, params.seedMix) + real(params.offset);
-    q = q * real(params.lacunarity);
-  }
+  for (uint i = 0u; i < params.octaves; ++i) value *= nextOctave(walk, params) + real(params.offset);
   return value;
+}
+
+// The fractal of type params.type along `walk` (a simplex type samples one octave).
+real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
+  if (params.type == kNoiseFbm) return fbmNoise(params, walk);
+  if (params.type == kNoiseRidged) return ridgedNoise(params, walk);
+  if (params.type == kNoiseHybrid) return hybridNoise(params, walk);
+  if (params.type == kNoiseHetero) return heteroNoise(params, walk);
+  if (params.type == kNoiseCascade) return cascadeNoise(params, walk);
+  return nextOctave(walk, params);
 }
 
 // The noise of type params.type at p.
 real evaluateNoise(IN(NoiseParams) params, vec3 p) {
-  if (params.type == kNoiseFbm) return fbmNoise(params, p);
-  if (params.type == kNoiseRidged) return ridgedNoise(params, p);
-  if (params.type == kNoiseHybrid) return hybridNoise(params, p);
-  if (params.type == kNoiseHetero) return heteroNoise(params, p);
-  if (params.type == kNoiseCascade) return cascadeNoise(params, p);
-  return simplexNoise(p, uvec3(0u), params.hash, params.seedMix);
+  OctaveWalk walk = plainWalk(params, p);
+  return fractalNoise(params, walk);
 }
 
 #endif

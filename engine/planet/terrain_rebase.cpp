@@ -1,0 +1,74 @@
+// Compiled with -ffp-contract=off like the rest of the noise reference (engine/CMakeLists.txt).
+#include "planet/terrain_rebase.h"
+
+#include <cmath>
+
+#include "noise/noise_kernel.h"
+#include "noise/permutation.h"
+
+namespace planet {
+namespace {
+
+constexpr uint32_t kOctaves = gpu::kNoiseMaxOctaves;
+
+// Splits `a` (octave units) into an integer vector whose coordinates sum to a multiple of 3
+// and a remainder in [0, 3) x [0, 1)^2, and returns the lattice shift of that integer vector:
+// skewing I adds (I.x + I.y + I.z) / 3 to every axis, so the shift is I + that sum / 3.
+void splitAnchor(const glm::dvec3& a, glm::vec4& remainder, glm::uvec4& shift) {
+  int64_t ix = int64_t(std::floor(a.x));
+  const int64_t iy = int64_t(std::floor(a.y));
+  const int64_t iz = int64_t(std::floor(a.z));
+  int64_t sum = ix + iy + iz;
+  int64_t excess = ((sum % 3) + 3) % 3;
+  ix -= excess;  // now (ix + iy + iz) is a multiple of 3 and a.x - ix is in [0, 3)
+  sum -= excess;
+  const int64_t m = sum / 3;
+  remainder = glm::vec4(float(a.x - double(ix)), float(a.y - double(iy)), float(a.z - double(iz)), 0.0f);
+  // Unsigned wrap-around is intended: both hashes depend on the indices modulo 2^22 or 2^8.
+  shift = glm::uvec4(uint32_t(uint64_t(ix + m)), uint32_t(uint64_t(iy + m)), uint32_t(uint64_t(iz + m)), 0u);
+}
+
+}  // namespace
+
+OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3& anchorM) {
+  OctaveTables tables;
+  tables.anchorM = anchorM;
+  tables.remainders.resize(planet.layers.size() * kOctaves);
+  tables.shifts.resize(planet.layers.size() * kOctaves);
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const NoiseLayer& layer = planet.layers[l];
+    // Octave i's scale is frequency * L^i with L rounded to float, as the shader's plain walk
+    // and the double reference use it.
+    const double lacunarity = double(float(layer.noise.lacunarity));
+    double scale = layer.frequency;
+    for (uint32_t i = 0; i < uint32_t(layer.noise.octaves); ++i, scale *= lacunarity) {
+      glm::vec4& remainder = tables.remainders[l * kOctaves + i];
+      splitAnchor(anchorM * scale, remainder, tables.shifts[l * kOctaves + i]);
+      remainder.w = float(scale);
+    }
+  }
+  return tables;
+}
+
+float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM) {
+  float sum = float(planet.baseHeightM);
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const NoiseLayer& layer = planet.layers[l];
+    noise::NoiseKernel<float> kernel;
+    kernel.permutation = noise::permutationTable(layer.noise.seed).data();
+    kernel.octaveRemainders = tables.remainders.data();
+    kernel.octaveShifts = tables.shifts.data();
+    const gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    noise::NoiseKernel<float>::OctaveWalk walk;
+    walk.q = glm::vec3(0.0f);
+    walk.lacunarity = params.lacunarity;
+    walk.offset = offsetM;
+    walk.layer = uint32_t(l);
+    walk.octave = 0;
+    walk.rebased = 1;
+    sum += float(layer.amplitudeM) * kernel.fractalNoise(params, walk);
+  }
+  return float(planet.heightScale) * sum;
+}
+
+}  // namespace planet
