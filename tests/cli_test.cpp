@@ -109,6 +109,7 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"height --at 1,2 --count 0", "", "--count must be in 1..1000000, got 0"},
       {"height --at 1,2 --preset nosuch", "", "unknown planet preset 'nosuch'"},
       {"height --at 1,2 --step-m -1", "", "--step-m must be in [0, 1e8], got -1"},
+      {"height --at 1,2 --backend tpu", "", "unknown backend 'tpu'"},
       {"frobnicate", "", "frobnicate"},
       {"", "", "a command is required"},
       {"bench", "", "a command is required"},
@@ -133,6 +134,21 @@ TEST(Cli, HeightPrintsOneHeightPerSampleInMetres) {
   // The first sample is the start point itself.
   CommandResult single = planet("height --at 30,40");
   EXPECT_EQ(single.out, run.out.substr(0, run.out.find('\n') + 1));
+}
+
+TEST(Cli, GpuHeightsFollowTheCpuReferenceWithinOneCentimetre) {
+  const std::string line = "height --at -40.5,170.25 --bearing 123 --step-m 0.05 --count 100";
+  CommandResult cpu = planet(line);
+  ASSERT_EQ(cpu.exitCode, 0) << cpu.err;
+  CommandResult gpu = planet(line + " --backend gpu");
+  if (noDevice(gpu)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(gpu.exitCode, 0) << gpu.err;
+  std::istringstream a(cpu.out), b(gpu.out);
+  std::vector<double> hc{std::istream_iterator<double>(a), std::istream_iterator<double>()};
+  std::vector<double> hg{std::istream_iterator<double>(b), std::istream_iterator<double>()};
+  ASSERT_EQ(hc.size(), 100u);
+  ASSERT_EQ(hg.size(), 100u);
+  for (size_t i = 0; i < hc.size(); ++i) EXPECT_NEAR(hg[i], hc[i], 0.01) << "sample " << i;
 }
 
 TEST(Cli, GpuBackendPrintsTheSameValuesAsTheCpuReference) {

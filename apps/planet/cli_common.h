@@ -38,6 +38,6 @@ class UsageError : public std::runtime_error {
 void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
-void addHeightCommand(CLI::App& app, int& exitCode);
+void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 }  // namespace planet::cli

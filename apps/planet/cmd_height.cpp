@@ -8,6 +8,8 @@
 #include "cli_common.h"
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "planet/terrain_points_gpu.h"
+#include "planet/terrain_rebase.h"
 
 namespace planet::cli {
 namespace {
@@ -20,6 +22,7 @@ struct HeightCommand {
   double bearingDeg = 0.0;
   double stepM = 1.0;
   size_t count = 1;
+  std::string backend = "cpu";
 };
 
 // "LAT,LON" in degrees.
@@ -38,12 +41,32 @@ glm::dvec2 parseLatLon(const std::string& text) {
   return {values[0], values[1]};
 }
 
-int runHeight(const HeightCommand& cmd) {
+// The GPU path: float offsets from the first sample, octave tables rebased there in double.
+std::vector<double> gpuHeights(const GlobalOptions& global, const PlanetDescription& planet, const glm::dvec3& start,
+                               const HeightCommand& cmd, int& exitCode) {
+  const glm::dvec3 anchor = planet.radiusM * start;
+  std::vector<glm::vec3> offsets(cmd.count);
+  for (size_t i = 0; i < cmd.count; ++i)
+    offsets[i] = glm::vec3(
+        planet.radiusM * travelGreatCircle(start, cmd.bearingDeg, double(i) * cmd.stepM, planet.radiusM) - anchor);
+  auto context = openContext(global);
+  std::vector<float> heights;
+  {
+    GpuTerrainPoints terrain(*context, planet);
+    heights = terrain.evaluate(buildOctaveTables(planet, anchor), offsets);
+  }
+  exitCode = finishWithValidation(*context, 0);
+  return std::vector<double>(heights.begin(), heights.end());
+}
+
+int runHeight(const GlobalOptions& global, const HeightCommand& cmd) {
   if (cmd.count < 1 || cmd.count > kMaxHeightSamples)
     throw UsageError(fmt::format("--count must be in 1..{}, got {}", kMaxHeightSamples, cmd.count));
   if (!std::isfinite(cmd.stepM) || cmd.stepM < 0.0 || cmd.stepM > 1e8)
     throw UsageError(fmt::format("--step-m must be in [0, 1e8], got {}", cmd.stepM));
   if (!std::isfinite(cmd.bearingDeg)) throw UsageError(fmt::format("--bearing must be finite, got {}", cmd.bearingDeg));
+  if (cmd.backend != "cpu" && cmd.backend != "gpu")
+    throw UsageError("unknown backend '" + cmd.backend + "' (expected cpu or gpu)");
   glm::dvec2 latLon = parseLatLon(cmd.at);
   glm::dvec3 start;
   PlanetDescription planet;
@@ -53,16 +76,19 @@ int runHeight(const HeightCommand& cmd) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  std::vector<double> heights = terrainHeightsAlong(planet, start, cmd.bearingDeg, cmd.stepM, cmd.count);
+  int exitCode = 0;
+  std::vector<double> heights = cmd.backend == "gpu"
+                                    ? gpuHeights(global, planet, start, cmd, exitCode)
+                                    : terrainHeightsAlong(planet, start, cmd.bearingDeg, cmd.stepM, cmd.count);
   fmt::memory_buffer out;
   for (double h : heights) fmt::format_to(std::back_inserter(out), "{:.4f}\n", h);
   std::fwrite(out.data(), 1, out.size(), stdout);
-  return 0;
+  return exitCode;
 }
 
 }  // namespace
 
-void addHeightCommand(CLI::App& app, int& exitCode) {
+void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<HeightCommand>();
   CLI::App* sub = app.add_subcommand(
       "height",
@@ -75,7 +101,11 @@ void addHeightCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   sub->add_option("--step-m", cmd->stepM, "Distance between samples in metres")->capture_default_str();
   sub->add_option("--count", cmd->count, "Number of samples")->capture_default_str();
-  sub->callback([&exitCode, cmd] { exitCode = runHeight(*cmd); });
+  sub->add_option(
+         "--backend", cmd->backend,
+         "cpu (double reference) | gpu (compute shader, float offsets from the first sample, rebased in double)")
+      ->capture_default_str();
+  sub->callback([&global, &exitCode, cmd] { exitCode = runHeight(global, *cmd); });
 }
 
 }  // namespace planet::cli

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   cli::addNoiseCommand(app, global, exitCode);
   cli::addValidateCommand(app, global, exitCode);
   cli::addBenchCommand(app, global, exitCode);
-  cli::addHeightCommand(app, exitCode);
+  cli::addHeightCommand(app, global, exitCode);
 
   try {
     app.parse(argc, argv);

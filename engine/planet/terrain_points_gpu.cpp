@@ -1,0 +1,103 @@
+#include "planet/terrain_points_gpu.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "noise/permutation.h"
+#include "shared/terrain_params.h"
+#include "spv/terrain_points.comp.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace planet {
+namespace {
+
+constexpr uint32_t kBufferCount = 6;  // shaders/shared/terrain_params.h, bindings 0..5
+constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
+
+}  // namespace
+
+GpuTerrainPoints::GpuTerrainPoints(vk::Context& context, const PlanetDescription& planet)
+    : context_(context), planet_(planet) {
+  if (planet.layers.size() > gpu::kTerrainMaxLayers)
+    throw Error(fmt::format("planet '{}' has {} layers; the GPU terrain holds at most {}", planet.name,
+                            planet.layers.size(), gpu::kTerrainMaxLayers));
+  static_assert(gpu::kTerrainBindingOffsets == 0 && gpu::kTerrainBindingPermutations == kBufferCount - 1);
+  try {
+    pipeline_ = vk::createComputePipeline(context_, kSpv_terrain_points_comp, kBufferCount,
+                                          sizeof(gpu::TerrainPointsPush), {}, 1);
+    // Per-planet data, uploaded once: layer parameters and each layer's permutation table.
+    std::vector<gpu::TerrainLayer> layers(gpu::kTerrainMaxLayers, gpu::TerrainLayer{});
+    std::vector<uint32_t> permutations(size_t(gpu::kTerrainMaxLayers) * gpu::kNoisePermutationSize, 0u);
+    for (size_t l = 0; l < planet.layers.size(); ++l) {
+      layers[l].noise = noise::toNoiseParams(planet.layers[l].noise);
+      layers[l].amplitudeM = float(planet.layers[l].amplitudeM);
+      const noise::PermutationTable& table = noise::permutationTable(planet.layers[l].noise.seed);
+      std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
+    }
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    layers_ =
+        vk::createBuffer(context_, layers.size() * sizeof(gpu::TerrainLayer), storage, vk::MemoryUsage::DeviceLocal);
+    vk::uploadBuffer(context_, layers_, layers.data(), layers.size() * sizeof(gpu::TerrainLayer));
+    permutations_ =
+        vk::createBuffer(context_, permutations.size() * sizeof(uint32_t), storage, vk::MemoryUsage::DeviceLocal);
+    vk::uploadBuffer(context_, permutations_, permutations.data(), permutations.size() * sizeof(uint32_t));
+    remainders_ = vk::createBuffer(context_, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
+    shifts_ = vk::createBuffer(context_, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+GpuTerrainPoints::~GpuTerrainPoints() { release(); }
+
+void GpuTerrainPoints::release() {
+  vk::destroyBuffer(context_, shifts_);
+  vk::destroyBuffer(context_, remainders_);
+  vk::destroyBuffer(context_, permutations_);
+  vk::destroyBuffer(context_, layers_);
+  vk::destroyComputePipeline(context_, pipeline_);
+}
+
+std::vector<float> GpuTerrainPoints::evaluate(const OctaveTables& tables, std::span<const glm::vec3> offsetsM) {
+  if (offsetsM.empty()) return {};
+  if (tables.remainders.size() != planet_.layers.size() * gpu::kNoiseMaxOctaves)
+    throw Error("octave tables were built for another planet");
+  // The tables change with the anchor (every frame in the renderer): host-visible buffers.
+  vk::uploadBuffer(context_, remainders_, tables.remainders.data(), tables.remainders.size() * sizeof(glm::vec4));
+  vk::uploadBuffer(context_, shifts_, tables.shifts.data(), tables.shifts.size() * sizeof(glm::uvec4));
+
+  std::vector<glm::vec4> padded(offsetsM.size());
+  for (size_t i = 0; i < offsetsM.size(); ++i) padded[i] = glm::vec4(offsetsM[i], 0.0f);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  vk::ScopedBuffer offsets(
+      context_, vk::createBuffer(context_, padded.size() * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal));
+  vk::uploadBuffer(context_, offsets.buffer, padded.data(), padded.size() * sizeof(glm::vec4));
+  vk::ScopedBuffer heights(
+      context_, vk::createBuffer(context_, offsetsM.size() * sizeof(float), storage, vk::MemoryUsage::DeviceLocal));
+
+  VK_CHECK(vkResetDescriptorPool(context_.device, pipeline_.descriptorPool, 0));
+  const vk::Buffer* buffers[kBufferCount] = {&offsets.buffer, &heights.buffer, &layers_,
+                                             &remainders_,    &shifts_,        &permutations_};
+  VkDescriptorSet set = vk::allocateStorageSet(context_, pipeline_, buffers);
+  gpu::TerrainPointsPush push{uint32_t(planet_.layers.size()), uint32_t(offsetsM.size()), float(planet_.baseHeightM),
+                              float(planet_.heightScale)};
+  const uint32_t groups = uint32_t((offsetsM.size() + gpu::kTerrainWorkgroupSize - 1) / gpu::kTerrainWorkgroupSize);
+  if (groups > context_.properties.limits.maxComputeWorkGroupCount[0])
+    throw Error(fmt::format("{} points exceed one dispatch", offsetsM.size()));
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout, 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, pipeline_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, groups, 1, 1);
+    // The heights are copied out by the readback's transfer.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  });
+  std::vector<float> result(offsetsM.size());
+  vk::readbackBuffer(context_, heights.buffer, result.data(), result.size() * sizeof(float));
+  return result;
+}
+
+}  // namespace planet
