@@ -2,10 +2,12 @@
 // and the exit codes.
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "vk/context.h"
 
@@ -27,6 +29,17 @@ std::unique_ptr<vk::Context> openContext(const GlobalOptions& options);
 // With validation on, any validation message turns the run into a failure: prints one line
 // and returns kExitFailure; else returns `exitCode`.
 int finishWithValidation(const vk::Context& context, int exitCode);
+
+// Writes each value on its own line of stdout with `format` (e.g. "{:.9g}"), in one write.
+template <typename Range>
+void printOnePerLine(const Range& values, std::string_view format) {
+  fmt::memory_buffer out;
+  for (const auto& v : values) {
+    fmt::format_to(std::back_inserter(out), fmt::runtime(format), v);
+    out.push_back('\n');
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
 
 // A bad value the user gave (flag or input line): printed as one line, exit code 2.
 class UsageError : public std::runtime_error {

@@ -80,9 +80,7 @@ int runHeight(const GlobalOptions& global, const HeightCommand& cmd) {
   std::vector<double> heights = cmd.backend == "gpu"
                                     ? gpuHeights(global, planet, start, cmd, exitCode)
                                     : terrainHeightsAlong(planet, start, cmd.bearingDeg, cmd.stepM, cmd.count);
-  fmt::memory_buffer out;
-  for (double h : heights) fmt::format_to(std::back_inserter(out), "{:.4f}\n", h);
-  std::fwrite(out.data(), 1, out.size(), stdout);
+  printOnePerLine(heights, "{:.4f}");
   return exitCode;
 }
 
@@ -91,9 +89,7 @@ int runHeight(const GlobalOptions& global, const HeightCommand& cmd) {
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<HeightCommand>();
   CLI::App* sub = app.add_subcommand(
-      "height",
-      "Terrain heights in metres above the radius sphere (CPU double reference), one per line, along a "
-      "great circle from --at");
+      "height", "Terrain heights in metres above the radius sphere, one per line, along a great circle from --at");
   sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
       ->capture_default_str();
   sub->add_option("--at", cmd->at, "Start point LAT,LON in degrees")->required();

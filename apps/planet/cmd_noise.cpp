@@ -52,9 +52,7 @@ int runNoise(const GlobalOptions& global, NoiseCommand& cmd, const CLI::App& sub
       noise::evaluateCpu(s, points, values, 0);
     }
   }
-  fmt::memory_buffer out;
-  for (float v : values) fmt::format_to(std::back_inserter(out), "{:.9g}\n", v);  // as printf %.9g
-  std::fwrite(out.data(), 1, out.size(), stdout);
+  printOnePerLine(values, "{:.9g}");  // as printf %.9g
   return exitCode;
 }
 

@@ -19,8 +19,7 @@ constexpr uint32_t kBufferCount = 3;  // points, values, permutation (shaders/sh
 
 GpuNoise::GpuNoise(vk::Context& context) : context_(context) {
   static_assert(gpu::kNoiseBindingPoints == 0 && gpu::kNoiseBindingValues == 1 && gpu::kNoiseBindingPermutation == 2);
-  const uint32_t maxGroups = std::min<uint32_t>(context_.properties.limits.maxComputeWorkGroupCount[0], 65535u);
-  maxPointsPerDispatch_ = size_t(maxGroups) * gpu::kNoiseWorkgroupSize;
+  setMaxPointsPerDispatch(SIZE_MAX);  // as many as the device's workgroup-count limit allows
   try {
     // The default pipeline (fBm, fast hash) also owns the descriptor pool of set_.
     pipelineFor(NoiseType::Fbm, NoiseHash::Fast);

@@ -1,5 +1,7 @@
 #include "noise/permutation.h"
 
+#include "core/hash.h"
+
 #include <map>
 #include <memory>
 #include <mutex>
@@ -25,12 +27,7 @@ constexpr uint8_t kPerlin[256] = {
 };
 
 // SplitMix64 (Steele, Lea, Flood 2014): a small, well-mixed, portable generator.
-uint64_t splitMix64(uint64_t& state) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
+uint64_t splitMix64(uint64_t& state) { return splitMix64Mix(state += 0x9e3779b97f4a7c15ull); }
 
 PermutationTable makeTable(uint32_t seed) {
   uint32_t perm[256];

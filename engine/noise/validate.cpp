@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/hash.h"
 #include "noise/noise_cpu.h"
 #include "noise/noise_gpu.h"
 #include "vk/context.h"
@@ -23,13 +24,8 @@ int64_t orderedBits(float f) {
   return i < 0 ? int64_t(INT32_MIN) - int64_t(i) : int64_t(i);
 }
 
-// SplitMix-style integer hash to a float in [0, 1), for portable deterministic points.
-float unitFloat(uint64_t x) {
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  x ^= x >> 31;
-  return float(x >> 40) * (1.0f / 16777216.0f);
-}
+// A key hashed to a float in [0, 1), for portable deterministic points.
+float unitFloat(uint64_t key) { return float(splitMix64Mix(key) >> 40) * (1.0f / 16777216.0f); }
 
 }  // namespace
 
