@@ -86,6 +86,7 @@ gpu::NoiseParams toNoiseParams(const NoiseSettings& s) {
   p.octaveWeight = float(std::pow(s.lacunarity, -s.H));
   p.offset = float(s.offset.value_or(defaultOffset(s.type)));
   p.gain = float(s.gain.value_or(kDefaultGain));
+  p.lastOctaveWeight = 1.0f;
   return p;
 }
 

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "noise/noise_kernel.h"
 #include "noise/permutation.h"
+#include "planet/octave_budget.h"
 
 namespace planet {
 
@@ -33,13 +34,16 @@ glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double 
   return glm::normalize(std::cos(angle) * up + std::sin(angle) * heading);
 }
 
-double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction) {
+double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction, double spacingM) {
   double sum = planet.baseHeightM;
   const glm::dvec3 onSphere = planet.radiusM * glm::normalize(direction);
   for (const NoiseLayer& layer : planet.layers) {
     noise::NoiseKernel<double> kernel;
     kernel.permutation = noise::permutationTable(layer.noise.seed).data();
-    const gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    const OctaveBudget budget = octaveBudget(layer, spacingM);
+    params.octaves = budget.octaves;
+    params.lastOctaveWeight = budget.lastOctaveWeight;
     sum += layer.amplitudeM * kernel.evaluateNoise(params, onSphere * layer.frequency);
   }
   return planet.heightScale * sum;

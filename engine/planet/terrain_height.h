@@ -22,8 +22,10 @@ glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double 
 
 // Height in metres above the radius sphere at unit direction `direction`:
 //   heightScale * (baseHeightM + sum over layers of amplitudeM * noise(radiusM * direction * frequency)).
-// Every octave of every layer is evaluated (no octave limit): this is the full-detail surface.
-double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction);
+// spacingM <= 0: every octave of every layer is evaluated (no octave limit), the full-detail
+// surface. spacingM > 0: each layer is limited to octaveBudget(layer, spacingM), as the renderer
+// limits a vertex or texel that far from its neighbours (octave_budget.h).
+double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction, double spacingM = 0.0);
 
 // Heights along a great circle: `count` samples `stepM` apart, starting at `start`.
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "noise/permutation.h"
 #include "shared/terrain_params.h"
 #include "spv/terrain_points.comp.h"
 #include "vk/commands.h"
@@ -18,30 +17,12 @@ constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::
 }  // namespace
 
 GpuTerrainPoints::GpuTerrainPoints(vk::Context& context, const PlanetDescription& planet)
-    : context_(context), planet_(planet) {
-  if (planet.layers.size() > gpu::kTerrainMaxLayers)
-    throw Error(fmt::format("planet '{}' has {} layers; the GPU terrain holds at most {}", planet.name,
-                            planet.layers.size(), gpu::kTerrainMaxLayers));
+    : context_(context), planet_(planet), data_(context, planet) {
   static_assert(gpu::kTerrainBindingOffsets == 0 && gpu::kTerrainBindingPermutations == kBufferCount - 1);
   try {
     pipeline_ = vk::createComputePipeline(context_, kSpv_terrain_points_comp, kBufferCount,
                                           sizeof(gpu::TerrainPointsPush), {}, 1);
-    // Per-planet data, uploaded once: layer parameters and each layer's permutation table.
-    std::vector<gpu::TerrainLayer> layers(gpu::kTerrainMaxLayers, gpu::TerrainLayer{});
-    std::vector<uint32_t> permutations(size_t(gpu::kTerrainMaxLayers) * gpu::kNoisePermutationSize, 0u);
-    for (size_t l = 0; l < planet.layers.size(); ++l) {
-      layers[l].noise = noise::toNoiseParams(planet.layers[l].noise);
-      layers[l].amplitudeM = float(planet.layers[l].amplitudeM);
-      const noise::PermutationTable& table = noise::permutationTable(planet.layers[l].noise.seed);
-      std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
-    }
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    layers_ =
-        vk::createBuffer(context_, layers.size() * sizeof(gpu::TerrainLayer), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context_, layers_, layers.data(), layers.size() * sizeof(gpu::TerrainLayer));
-    permutations_ =
-        vk::createBuffer(context_, permutations.size() * sizeof(uint32_t), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context_, permutations_, permutations.data(), permutations.size() * sizeof(uint32_t));
     remainders_ = vk::createBuffer(context_, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
     shifts_ = vk::createBuffer(context_, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
   } catch (...) {
@@ -55,8 +36,6 @@ GpuTerrainPoints::~GpuTerrainPoints() { release(); }
 void GpuTerrainPoints::release() {
   vk::destroyBuffer(context_, shifts_);
   vk::destroyBuffer(context_, remainders_);
-  vk::destroyBuffer(context_, permutations_);
-  vk::destroyBuffer(context_, layers_);
   vk::destroyComputePipeline(context_, pipeline_);
 }
 
@@ -78,8 +57,8 @@ std::vector<float> GpuTerrainPoints::evaluate(const OctaveTables& tables, std::s
       context_, vk::createBuffer(context_, offsetsM.size() * sizeof(float), storage, vk::MemoryUsage::DeviceLocal));
 
   VK_CHECK(vkResetDescriptorPool(context_.device, pipeline_.descriptorPool, 0));
-  const vk::Buffer* buffers[kBufferCount] = {&offsets.buffer, &heights.buffer, &layers_,
-                                             &remainders_,    &shifts_,        &permutations_};
+  const vk::Buffer* buffers[kBufferCount] = {&offsets.buffer, &heights.buffer, &data_.layers(),
+                                             &remainders_,    &shifts_,        &data_.permutations()};
   VkDescriptorSet set = vk::allocateStorageSet(context_, pipeline_, buffers);
   gpu::TerrainPointsPush push{uint32_t(planet_.layers.size()), uint32_t(offsetsM.size()), float(planet_.baseHeightM),
                               float(planet_.heightScale)};

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "planet/planet_description.h"
+#include "planet/planet_gpu_data.h"
 #include "planet/terrain_rebase.h"
 #include "vk/buffer.h"
 #include "vk/pipeline.h"
@@ -35,9 +36,8 @@ class GpuTerrainPoints {
 
   vk::Context& context_;
   PlanetDescription planet_;
+  PlanetGpuData data_;
   vk::ComputePipeline pipeline_;
-  vk::Buffer layers_;
-  vk::Buffer permutations_;
   vk::Buffer remainders_;
   vk::Buffer shifts_;
 };

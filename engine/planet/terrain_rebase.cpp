@@ -5,6 +5,7 @@
 
 #include "noise/noise_kernel.h"
 #include "noise/permutation.h"
+#include "planet/octave_budget.h"
 
 namespace planet {
 namespace {
@@ -50,7 +51,8 @@ OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3
   return tables;
 }
 
-float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM) {
+float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM,
+                           double spacingM) {
   float sum = float(planet.baseHeightM);
   for (size_t l = 0; l < planet.layers.size(); ++l) {
     const NoiseLayer& layer = planet.layers[l];
@@ -58,7 +60,10 @@ float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& 
     kernel.permutation = noise::permutationTable(layer.noise.seed).data();
     kernel.octaveRemainders = tables.remainders.data();
     kernel.octaveShifts = tables.shifts.data();
-    const gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
+    const OctaveBudget budget = octaveBudget(layer, spacingM);
+    params.octaves = budget.octaves;
+    params.lastOctaveWeight = budget.lastOctaveWeight;
     noise::NoiseKernel<float>::OctaveWalk walk;
     walk.q = glm::vec3(0.0f);
     walk.lacunarity = params.lacunarity;

@@ -27,7 +27,9 @@ struct OctaveTables {
 OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3& anchorM);
 
 // Height in metres, computed in float along the rebased path, at the point of the radius sphere
-// that lies `offsetM` from the anchor (offsetM = sample - anchor, planet frame).
-float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM);
+// that lies `offsetM` from the anchor (offsetM = sample - anchor, planet frame). spacingM limits
+// the octaves as in terrainHeightM (0: all of them).
+float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM,
+                           double spacingM = 0.0);
 
 }  // namespace planet

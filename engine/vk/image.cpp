@@ -28,17 +28,21 @@ uint32_t formatTexelSize(VkFormat format) {
   }
 }
 
-Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage) {
-  if (extent.width == 0 || extent.height == 0) throw Error("cannot create an image of size 0");
+namespace {
+
+Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                  VkImageViewType viewType) {
+  if (extent.width == 0 || extent.height == 0 || layers == 0) throw Error("cannot create an image of size 0");
   Image image;
   image.format = format;
   image.extent = extent;
+  image.layers = layers;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
   info.extent = {extent.width, extent.height, 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.arrayLayers = layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -48,17 +52,28 @@ Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImag
     image.allocation = context.allocator.allocateForImage(image.image, MemoryUsage::DeviceLocal, ResourceKind::Optimal);
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     viewInfo.image = image.image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.viewType = viewType;
     viewInfo.format = format;
     bool depth = format == VK_FORMAT_D32_SFLOAT;
     viewInfo.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
-                                 1, 0, 1};
+                                 1, 0, layers};
     VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.view));
   } catch (...) {
     destroyImage(context, image);
     throw;
   }
   return image;
+}
+
+}  // namespace
+
+Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage) {
+  return createImage(context, extent, 1, format, usage, VK_IMAGE_VIEW_TYPE_2D);
+}
+
+Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
+                         VkImageUsageFlags usage) {
+  return createImage(context, extent, layers, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
 }
 
 void destroyImage(Context& context, Image& image) {
@@ -82,7 +97,7 @@ void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
   barrier.image = image.image;
   bool depth = image.format == VK_FORMAT_D32_SFLOAT;
   barrier.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1,
-                              0, 1};
+                              0, image.layers};
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &barrier;
@@ -92,13 +107,13 @@ void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
 
 static VkBufferImageCopy fullCopy(const Image& image) {
   VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
   region.imageExtent = {image.extent.width, image.extent.height, 1};
   return region;
 }
 
 void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout) {
-  size_t expected = size_t(image.extent.width) * image.extent.height * formatTexelSize(image.format);
+  size_t expected = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
   if (bytes != expected)
     throw Error("image upload of " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected));
   ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
@@ -118,7 +133,7 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
 }
 
 std::vector<uint8_t> readbackImage(Context& context, Image& image) {
-  size_t bytes = size_t(image.extent.width) * image.extent.height * formatTexelSize(image.format);
+  size_t bytes = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
   ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
   std::vector<uint8_t> texels(bytes);
   submitAndWait(context, [&](VkCommandBuffer cmd) {

@@ -18,6 +18,7 @@ struct Image {
   Allocation allocation;
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{0, 0};
+  uint32_t layers = 1;                               // array layers
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
 };
 
@@ -25,12 +26,16 @@ struct Image {
 uint32_t formatTexelSize(VkFormat format);
 
 Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage);
+// An array of `layers` 2D images with one VK_IMAGE_VIEW_TYPE_2D_ARRAY view over all of them (also for 1).
+Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
+                         VkImageUsageFlags usage);
 void destroyImage(Context& context, Image& image);
 
 // Records a layout transition of the whole image with a full barrier between the given stages.
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                      VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// Upload and readback cover every layer, tightly packed, layer after layer.
 // Fills the image with tightly packed texels and leaves it in `finalLayout` (blocking).
 void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout);
 

@@ -1,5 +1,6 @@
 #include "vk/pipeline.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/error.h"
@@ -20,16 +21,47 @@ VkShaderModule createShaderModule(Context& context, std::span<const uint32_t> sp
 ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv, uint32_t storageBufferCount,
                                       uint32_t pushConstantSize, std::span<const uint32_t> specialization,
                                       uint32_t maxSets) {
+  std::vector<VkDescriptorType> bindings(storageBufferCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  return createComputePipeline(context, spirv, bindings, pushConstantSize, specialization, maxSets);
+}
+
+VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescriptorType> bindings,
+                                      VkShaderStageFlags stages) {
+  std::vector<VkDescriptorSetLayoutBinding> entries(bindings.size());
+  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, bindings[i], 1, stages, nullptr};
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.bindingCount = uint32_t(entries.size());
+  setInfo.pBindings = entries.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorSetLayout(context.device, &setInfo, nullptr, &layout));
+  return layout;
+}
+
+VkDescriptorPool createDescriptorPool(Context& context, std::span<const VkDescriptorType> bindings, uint32_t maxSets) {
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (VkDescriptorType type : bindings) {
+    auto it = std::find_if(sizes.begin(), sizes.end(), [&](const VkDescriptorPoolSize& s) { return s.type == type; });
+    if (it == sizes.end())
+      sizes.push_back({type, maxSets});
+    else
+      it->descriptorCount += maxSets;
+  }
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = maxSets;
+  poolInfo.poolSizeCount = uint32_t(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDescriptorPool(context.device, &poolInfo, nullptr, &pool));
+  return pool;
+}
+
+ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv,
+                                      std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
+                                      std::span<const uint32_t> specialization, uint32_t maxSets) {
   ComputePipeline result;
   result.pushConstantSize = pushConstantSize;
   try {
-    std::vector<VkDescriptorSetLayoutBinding> bindings(storageBufferCount);
-    for (uint32_t i = 0; i < storageBufferCount; ++i)
-      bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = storageBufferCount;
-    setInfo.pBindings = bindings.data();
-    VK_CHECK(vkCreateDescriptorSetLayout(context.device, &setInfo, nullptr, &result.setLayout));
+    result.setLayout = createSetLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT);
 
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -56,12 +88,7 @@ ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t
     vkDestroyShaderModule(context.device, module, nullptr);
     VK_CHECK(created);
 
-    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storageBufferCount * maxSets};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = maxSets;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
-    VK_CHECK(vkCreateDescriptorPool(context.device, &poolInfo, nullptr, &result.descriptorPool));
+    result.descriptorPool = createDescriptorPool(context, bindings, maxSets);
   } catch (...) {
     destroyComputePipeline(context, result);
     throw;
@@ -77,14 +104,43 @@ void destroyComputePipeline(Context& context, ComputePipeline& pipeline) {
   pipeline = ComputePipeline{};
 }
 
-VkDescriptorSet allocateStorageSet(Context& context, const ComputePipeline& pipeline,
-                                   std::span<const Buffer* const> buffers) {
+VkDescriptorSet allocateSet(Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
   VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  info.descriptorPool = pipeline.descriptorPool;
+  info.descriptorPool = pool;
   info.descriptorSetCount = 1;
-  info.pSetLayouts = &pipeline.setLayout;
+  info.pSetLayouts = &layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
   VK_CHECK(vkAllocateDescriptorSets(context.device, &info, &set));
+  return set;
+}
+
+void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                           const Buffer& buffer) {
+  VkDescriptorBufferInfo info{buffer.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = type;
+  write.pBufferInfo = &info;
+  vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
+}
+
+void writeImageDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                          VkImageView view, VkImageLayout layout, VkSampler sampler) {
+  VkDescriptorImageInfo info{sampler, view, layout};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = type;
+  write.pImageInfo = &info;
+  vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
+}
+
+VkDescriptorSet allocateStorageSet(Context& context, const ComputePipeline& pipeline,
+                                   std::span<const Buffer* const> buffers) {
+  VkDescriptorSet set = allocateSet(context, pipeline.descriptorPool, pipeline.setLayout);
 
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());

@@ -29,7 +29,25 @@ VkShaderModule createShaderModule(Context& context, std::span<const uint32_t> sp
 ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv, uint32_t storageBufferCount,
                                       uint32_t pushConstantSize, std::span<const uint32_t> specialization = {},
                                       uint32_t maxSets = 4);
+// The general form: set 0 binding i has type bindings[i] (storage buffer, storage image,
+// combined image sampler, uniform buffer), one descriptor each.
+ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv,
+                                      std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
+                                      std::span<const uint32_t> specialization = {}, uint32_t maxSets = 4);
 void destroyComputePipeline(Context& context, ComputePipeline& pipeline);
+
+// A descriptor set layout with bindings[i] at binding i, visible to `stages`, and a pool for
+// `maxSets` such sets (graphics passes use these; compute pipelines make their own).
+VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescriptorType> bindings,
+                                      VkShaderStageFlags stages);
+VkDescriptorPool createDescriptorPool(Context& context, std::span<const VkDescriptorType> bindings, uint32_t maxSets);
+VkDescriptorSet allocateSet(Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+// Points one binding of `set` at a whole buffer (storage or uniform, as `type` says).
+void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                           const Buffer& buffer);
+// Points one binding of `set` at an image view (storage image: sampler null; combined image sampler).
+void writeImageDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                          VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
 
 // Allocates a set from the pipeline's pool and points binding i at buffers[i] (whole range).
 VkDescriptorSet allocateStorageSet(Context& context, const ComputePipeline& pipeline,

@@ -223,16 +223,29 @@ real nextOctave(INOUT(OctaveWalk) walk, IN(NoiseParams) params) {
 
 // The fractals below follow the formulas of issue 2 (Musgrave's definitions as given in
 // seed 002 §4.9-4.10): octave i samples p * L^i (through the walk) with weight w_i = L^(-i*H).
+//
+// Octave fade: every fractal is a running value updated once per octave, so "the last octave
+// at a fraction f" is the value before it plus f times what it added (fadeLast). A renderer
+// limits each sample to the octaves its spacing can show and fades the last one in with
+// params.lastOctaveWeight, so the value changes continuously with the spacing (no popping).
+// At weight 1 the result is exactly the unfaded one.
+real fadeLast(IN(NoiseParams) params, real before, real after) {
+  if (params.lastOctaveWeight >= real(1.0f)) return after;
+  PRECISE real faded = before + (after - before) * real(params.lastOctaveWeight);
+  return faded;
+}
 
 // fBm: sum of N(p_i) * w_i.
 real fbmNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real sum = real(0.0f);
+  PRECISE real before = real(0.0f);
   PRECISE real w = real(1.0f);
   for (uint i = 0u; i < params.octaves; ++i) {
+    before = sum;
     sum += nextOctave(walk, params) * w;
     w *= real(params.octaveWeight);
   }
-  return sum;
+  return fadeLast(params, before, sum);
 }
 
 // Ridged multifractal: s_0 = (offset - |N(p_0)|)^2; each next octave is weighted by the
@@ -242,15 +255,17 @@ real ridgedNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real signal = offset - abs(nextOctave(walk, params));
   signal = signal * signal;
   PRECISE real result = signal;
+  PRECISE real before = real(0.0f);
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
     w *= real(params.octaveWeight);
     PRECISE real weight = clamp(signal * real(params.gain), real(0.0f), real(1.0f));
     signal = offset - abs(nextOctave(walk, params));
     signal = signal * signal * weight;
+    before = result;
     result += signal * w;
   }
-  return result;
+  return fadeLast(params, before, result);
 }
 
 // Hybrid multifractal: smooth low areas, rough peaks; each octave is weighted by the running
@@ -258,16 +273,18 @@ real ridgedNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 real hybridNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real offset = real(params.offset);
   PRECISE real result = nextOctave(walk, params) + offset;
+  PRECISE real before = real(0.0f);
   PRECISE real weight = result;
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
     w *= real(params.octaveWeight);
     weight = clamp(weight, real(0.0f), real(1.0f));
     PRECISE real signal = (nextOctave(walk, params) + offset) * w;
+    before = result;
     result += weight * signal;
     weight *= signal;
   }
-  return result;
+  return fadeLast(params, before, result);
 }
 
 // Heterogeneous terrain: each octave is scaled by the value so far, so heights vary in
@@ -275,20 +292,26 @@ real hybridNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 real heteroNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real offset = real(params.offset);
   PRECISE real value = offset + nextOctave(walk, params);
+  PRECISE real before = real(0.0f);
   PRECISE real w = real(1.0f);
   for (uint i = 1u; i < params.octaves; ++i) {
     w *= real(params.octaveWeight);
+    before = value;
     value += (nextOctave(walk, params) + offset) * w * value;
   }
-  return value;
+  return fadeLast(params, before, value);
 }
 
 // Multiplicative cascade: product of (N(p_i) + offset). Seed 002's amplitude division cancels
-// out, so H has no effect here.
+// out, so H has no effect here. Faded, the last factor is 1 + f * (N + offset - 1).
 real cascadeNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real value = real(1.0f);
-  for (uint i = 0u; i < params.octaves; ++i) value *= nextOctave(walk, params) + real(params.offset);
-  return value;
+  PRECISE real before = real(1.0f);
+  for (uint i = 0u; i < params.octaves; ++i) {
+    before = value;
+    value *= nextOctave(walk, params) + real(params.offset);
+  }
+  return fadeLast(params, before, value);
 }
 
 // The fractal of type params.type along `walk` (a simplex type samples one octave).

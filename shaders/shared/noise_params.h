@@ -40,7 +40,7 @@ struct NoiseParams {
   float gain;          // ridged feedback gain
   uint count;          // points to evaluate (GPU only)
   uint firstIndex;     // index of the first point of this dispatch (GPU only)
-  uint pad1;
+  float lastOctaveWeight;  // (0, 1]: the last of `octaves` counts this much (1: fully), the octave fade
   uint pad2;
 };
 GPU_ASSERT_SIZE(NoiseParams, 48)

@@ -1,0 +1,23 @@
+#include "planet/octave_budget.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace planet {
+
+OctaveBudget octaveBudget(const NoiseLayer& layer, double spacingM, double wavelengthsPerSpacing) {
+  const uint32_t maxOctaves = uint32_t(layer.noise.octaves);
+  if (!(spacingM > 0.0) || !std::isfinite(spacingM)) return {maxOctaves, 1.0f};
+  // The shaders scale octaves by L rounded to float; use the same L here.
+  const double lacunarity = double(float(layer.noise.lacunarity));
+  const double count = 1.0 + std::log(1.0 / (layer.frequency * wavelengthsPerSpacing * spacingM)) / std::log(lacunarity);
+  if (!(count < double(maxOctaves))) return {maxOctaves, 1.0f};
+  if (!(count > 1.0)) return {1, 1.0f};
+  const double whole = std::floor(count);
+  const double fraction = count - whole;
+  if (fraction <= 0.0) return {uint32_t(whole), 1.0f};
+  // A weight that rounds to 0 in float still counts as a (nearly free) extra octave: harmless.
+  return {uint32_t(whole) + 1, std::max(float(fraction), 1e-7f)};
+}
+
+}  // namespace planet

@@ -1,0 +1,36 @@
+// The per-planet data every terrain shader reads (shaders/shared/terrain_params.h): the layer
+// parameters and each layer's reference permutation table, uploaded once to device-local
+// buffers. The per-frame octave tables (terrain_rebase.h) belong to each pass.
+#pragma once
+
+#include "planet/planet_description.h"
+#include "vk/buffer.h"
+
+namespace planet::vk {
+class Context;
+}
+
+namespace planet {
+
+class PlanetGpuData {
+ public:
+  // Throws planet::Error if the planet has more layers than the shaders hold.
+  PlanetGpuData(vk::Context& context, const PlanetDescription& planet);
+  ~PlanetGpuData();
+  PlanetGpuData(const PlanetGpuData&) = delete;
+  PlanetGpuData& operator=(const PlanetGpuData&) = delete;
+
+  const PlanetDescription& planet() const { return planet_; }
+  const vk::Buffer& layers() const { return layers_; }              // gpu::TerrainLayer[kTerrainMaxLayers]
+  const vk::Buffer& permutations() const { return permutations_; }  // uint[kTerrainMaxLayers * kNoisePermutationSize]
+
+ private:
+  void release();
+
+  vk::Context& context_;
+  PlanetDescription planet_;
+  vk::Buffer layers_;
+  vk::Buffer permutations_;
+};
+
+}  // namespace planet
