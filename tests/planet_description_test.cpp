@@ -98,7 +98,7 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   EXPECT_EQ(d.seaLevelM, 0.0);
   EXPECT_EQ(d.colors.snowLineM, 3500.0);
   EXPECT_EQ(d.colors.iceCapLatitudeDeg, 70.0);
-  ASSERT_EQ(d.layers.size(), 3u);
+  ASSERT_EQ(d.layers.size(), 4u);
   const NoiseLayer& continents = d.layers[0];
   const NoiseLayer& mountains = d.layers[1];
   const NoiseLayer& detail = d.layers[2];
@@ -112,6 +112,10 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   double finestM = 1.0 / detail.frequency / std::pow(detail.noise.lacunarity, detail.noise.octaves - 1);
   EXPECT_LT(finestM, 1.0);
   EXPECT_GE(detail.noise.octaves, 20);
+  // Ground roughness: plain fBm down to centimetres, so that plains are not glassy at 2 m.
+  const NoiseLayer& ground = d.layers[3];
+  EXPECT_EQ(ground.noise.type, noise::NoiseType::Fbm);
+  EXPECT_LT(1.0 / ground.frequency / std::pow(ground.noise.lacunarity, ground.noise.octaves - 1), 0.02);
 }
 
 TEST(PlanetDescription, PresetsAreVisiblyDifferent) {

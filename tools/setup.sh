@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 
 # Compiler and build; Vulkan loader, lavapipe (Vulkan on the CPU) and the validation layers;
 # glslang for GLSL -> SPIR-V at build time; libraries; GoogleTest; libnoise (the peer noise
-# library `planet bench noise` compares against).
+# library `planet bench noise` compares against); stb (PNG files for renders and golden images).
 packages=(
   build-essential cmake ninja-build
   libvulkan-dev mesa-vulkan-drivers
@@ -17,6 +17,7 @@ packages=(
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
   libgtest-dev
   libnoise-dev
+  libstb-dev
 )
 
 missing=()

@@ -52,5 +52,6 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 }  // namespace planet::cli

@@ -10,7 +10,8 @@ OctaveBudget octaveBudget(const NoiseLayer& layer, double spacingM, double wavel
   if (!(spacingM > 0.0) || !std::isfinite(spacingM)) return {maxOctaves, 1.0f};
   // The shaders scale octaves by L rounded to float; use the same L here.
   const double lacunarity = double(float(layer.noise.lacunarity));
-  const double count = 1.0 + std::log(1.0 / (layer.frequency * wavelengthsPerSpacing * spacingM)) / std::log(lacunarity);
+  const double count =
+      1.0 + std::log(1.0 / (layer.frequency * wavelengthsPerSpacing * spacingM)) / std::log(lacunarity);
   if (!(count < double(maxOctaves))) return {maxOctaves, 1.0f};
   if (!(count > 1.0)) return {1, 1.0f};
   const double whole = std::floor(count);

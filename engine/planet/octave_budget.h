@@ -21,7 +21,7 @@ namespace planet {
 inline constexpr double kOctaveWavelengthsPerSpacing = 4.0;
 
 struct OctaveBudget {
-  uint32_t octaves = 1;          // 1..layer octaves: how many to evaluate
+  uint32_t octaves = 1;           // 1..layer octaves: how many to evaluate
   float lastOctaveWeight = 1.0f;  // (0, 1]: weight of the last one (NoiseParams::lastOctaveWeight)
 };
 

@@ -1,6 +1,7 @@
 // Compiled with -ffp-contract=off like the rest of the noise reference (engine/CMakeLists.txt).
 #include "planet/terrain_height.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -47,6 +48,30 @@ double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& directi
     sum += layer.amplitudeM * kernel.evaluateNoise(params, onSphere * layer.frequency);
   }
   return planet.heightScale * sum;
+}
+
+double estimateMaxTerrainHeightM(const PlanetDescription& planet) {
+  constexpr int kSamples = 4096;
+  const double spacing = planet.radiusM * std::sqrt(4.0 * std::numbers::pi / kSamples);
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  double highest = -1e300;
+  for (int i = 0; i < kSamples; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / kSamples;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden * i;
+    highest = std::max(highest, terrainHeightM(planet, {r * std::cos(phi), r * std::sin(phi), z}, spacing));
+  }
+  // What the omitted octaves can add: each weighs octaveWeight^i; bound a fractal's finer part
+  // by twice its geometric tail (the multifractals multiply by signals of about 1..2).
+  double margin = 0.0;
+  for (const NoiseLayer& layer : planet.layers) {
+    const OctaveBudget budget = octaveBudget(layer, spacing);
+    const double weight = std::pow(layer.noise.lacunarity, -layer.noise.H);
+    double tail = 0.0;
+    for (int i = int(budget.octaves) - 1; i < layer.noise.octaves; ++i) tail += std::pow(weight, i);
+    margin += std::abs(layer.amplitudeM) * 2.0 * tail;
+  }
+  return std::max(0.0, (highest + std::abs(planet.heightScale) * margin) * 1.1);
 }
 
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,

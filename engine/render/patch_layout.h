@@ -62,9 +62,10 @@ struct PatchLayout {
 struct PatchSettings {
   uint32_t resolution = 512;  // texels per side of each level
   uint32_t levelCount = 6;    // levels (texture array layers)
-  // The finest level's texel is about this many pixels at the nadir (< 1: sharper than the mesh
-  // needs; the ground far from the nadir is seen at a slant and through coarser levels).
-  double texelsPerNadirPixel = 1.0;
+  // Texels per pixel of the finest level at the nadir. 0.5 (a texel spans up to two pixels)
+  // lets a 512² level cover a 960-pixel-wide view looking straight down, so the ground under
+  // the camera never shows a level's edge; oblique views reach coarser levels by footprint.
+  double texelsPerNadirPixel = 0.5;
   // Levels are recentred in steps of resolution / recentreDivisor texels, so the camera stays
   // at least (1/2 − 1/divisor) of a level from its edge and a level is rebuilt only after the
   // camera has moved that far.

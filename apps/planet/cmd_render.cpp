@@ -1,0 +1,121 @@
+// planet render: one frame of a preset, offscreen (lavapipe or GPU), written to a PNG.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "core/error.h"
+#include "core/image_file.h"
+#include "render/renderer.h"
+#include "vk/context.h"
+
+namespace planet::cli {
+namespace {
+
+struct RenderCommand {
+  std::string preset{kDefaultPresetName};
+  std::string camera;
+  std::string sun;
+  std::string size = "960x540";
+  std::string out = "planet.png";
+  std::optional<uint64_t> seed;
+  double fovDeg = 60.0;
+  bool wireframe = false;
+  bool noPatches = false;
+};
+
+// "WxH" in pixels.
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+  const size_t x = text.find('x');
+  auto number = [&](std::string_view part, uint32_t& value) {
+    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    return !part.empty() && ec == std::errc() && ptr == part.data() + part.size();
+  };
+  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), width) ||
+      !number(std::string_view(text).substr(x + 1), height))
+    throw UsageError("--size expects WIDTHxHEIGHT in pixels, got '" + text + "'");
+  if (width == 0 || height == 0 || width > kRenderMaxSize || height > kRenderMaxSize)
+    throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, kRenderMaxSize, kRenderMaxSize));
+}
+
+// --seed S turns every layer's seed into (seed + S) mod 2^32: another planet of the same kind.
+void applySeed(PlanetDescription& planet, uint64_t seed) {
+  for (NoiseLayer& layer : planet.layers)
+    layer.noise.seed = uint32_t((uint64_t(layer.noise.seed) + seed) & 0xffffffffu);
+}
+
+int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
+  RenderSettings settings;
+  parseSize(cmd.size, settings.width, settings.height);
+  if (!(cmd.fovDeg > 0.0 && cmd.fovDeg <= 179.0))
+    throw UsageError(fmt::format("--fov must be in (0, 179] degrees, got {}", cmd.fovDeg));
+  settings.fovYDeg = cmd.fovDeg;
+  settings.terrain.wireframe = cmd.wireframe;
+  settings.terrain.patches = !cmd.noPatches;
+  if (cmd.out.empty()) throw UsageError("--out must name a file");
+  if (cmd.seed && *cmd.seed > 0xffffffffull)
+    throw UsageError(fmt::format("--seed must be in 0..4294967295, got {}", *cmd.seed));
+  PlanetDescription planet;
+  CameraPose camera;
+  SunPose sun;
+  try {
+    planet = resolvePreset(cmd.preset);
+    if (!cmd.camera.empty()) camera = parseCameraPose(cmd.camera);
+    if (!cmd.sun.empty()) sun = parseSunPose(cmd.sun);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  if (cmd.seed) applySeed(planet, *cmd.seed);
+
+  auto context = openContext(global);
+  RenderResult result;
+  {
+    Renderer renderer(*context, planet, settings);
+    result = renderer.render(camera, sun);
+  }
+  if (result.cameraRaised)
+    std::fprintf(stderr,
+                 "planet: warning: camera altitude %.2f m is below the ground; raised to %.2f m (%.1f m above it)\n",
+                 camera.altitudeM, result.camera.altitudeM, kMinEyeHeightM);
+  writePng(cmd.out, result.image);
+  const TerrainFrameInfo& t = result.terrain;
+  fmt::print("wrote {} ({}x{}, {} on {})\n", cmd.out, settings.width, settings.height, planet.name, context->info.name);
+  fmt::print("camera: lat {} lon {} altitude {:.2f} m ({:.2f} m above the ground), heading {} pitch {}\n",
+             result.camera.latitudeDeg, result.camera.longitudeDeg, result.camera.altitudeM, t.heightAboveGroundM,
+             result.camera.headingDeg, result.camera.pitchDeg);
+  fmt::print("metres per vertex at the nadir: {:.4g}\n", t.metresPerVertexAtNadir);
+  fmt::print("triangles drawn: {} (rings {}..{} of {}), vertices evaluated: {}, patch levels built: {}\n", t.triangles,
+             t.rings.firstRing, t.rings.lastRing, settings.terrain.mesh.levels * settings.terrain.mesh.ringsPerLevel,
+             t.verticesEvaluated, t.patchLevelsRebuilt);
+  std::string times;
+  for (const vk::GpuTiming& timing : result.timings)
+    times += fmt::format(" {} {:.2f} ms", timing.name, timing.milliseconds);
+  fmt::print("GPU time per pass:{}\n", times.empty() ? " (no timestamps on this device)" : times);
+  return finishWithValidation(*context, 0);
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+  auto cmd = std::make_shared<RenderCommand>();
+  CLI::App* sub = app.add_subcommand("render", "Render a planet offscreen (no window needed) and write a PNG");
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
+      ->capture_default_str();
+  sub->add_option("--camera", cmd->camera,
+                  "LAT,LON,ALT_M[,HEADING,PITCH]: degrees, metres above sea level, heading clockwise from north, "
+                  "pitch above the horizon (-90 looks down) [default: 20,-30,2e7,0,-90]");
+  sub->add_option("--sun", cmd->sun,
+                  "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]");
+  sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
+  sub->add_option("--out", cmd->out, "PNG file to write (replaced atomically)")->capture_default_str();
+  sub->add_option("--seed", cmd->seed, "Added to every layer's seed: another planet of the same kind");
+  sub->add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str();
+  sub->add_flag("--wireframe", cmd->wireframe, "Draw triangle edges only (debug)");
+  sub->add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)");
+  sub->callback([&global, &exitCode, cmd] { exitCode = runRender(global, *cmd); });
+}
+
+}  // namespace planet::cli

@@ -1,0 +1,305 @@
+#include "render/patch_textures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "noise/noise_settings.h"
+#include "planet/octave_budget.h"
+#include "planet/planet_gpu_data.h"
+#include "planet/terrain_rebase.h"
+#include "shared/patch_params.h"
+#include "spv/patch_height.comp.h"
+#include "spv/patch_normal.comp.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+
+namespace planet {
+namespace {
+
+// Set 0 of both passes (shaders/shared/patch_params.h); each pass uses a subset.
+constexpr VkDescriptorType kBindings[] = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLevel
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingRemainders
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingShifts
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingHeights
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLayers
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingPermutations
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,   // kPatchBindingImage
+};
+static_assert(std::size(kBindings) == gpu::kPatchBindingCount && gpu::kPatchBindingImage == 6);
+// The level buffer's std430 block: PatchLevelParams, then the runtime array of tiles.
+static_assert(sizeof(gpu::PatchLevelParams) % 16 == 0);
+
+// Exponents whose texel size 2^e, and the squares of small multiples of it, stay normal floats.
+constexpr int kMaxAbsExponent = 60;
+
+uint32_t groupsFor(uint32_t count) { return (count + gpu::kPatchWorkgroupSize - 1) / gpu::kPatchWorkgroupSize; }
+
+// floor(value / step) for a positive step.
+int64_t floorDiv(int64_t value, int64_t step) {
+  int64_t quotient = value / step;
+  return (value % step != 0 && value < 0) ? quotient - 1 : quotient;
+}
+
+// The height pipeline's specialization constants for the planet's layers (gpu::kPatchSpec*).
+std::vector<uint32_t> specializationFor(const PlanetDescription& planet) {
+  std::vector<uint32_t> values(gpu::kPatchSpecCount, 0u);
+  values[gpu::kPatchSpecLayerCount] = uint32_t(planet.layers.size());
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const gpu::NoiseParams params = noise::toNoiseParams(planet.layers[l].noise);
+    values[gpu::kPatchSpecTypes + l] = params.type;
+    values[gpu::kPatchSpecHashes + l] = params.hash;
+  }
+  return values;
+}
+
+}  // namespace
+
+PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, const PatchSettings& settings)
+    : context_(context), data_(data), settings_(settings) {
+  validatePatchSettings(settings_);
+  VkFormatProperties properties{};
+  vkGetPhysicalDeviceFormatProperties(context_.physicalDevice, kFormat, &properties);
+  const VkFormatFeatureFlags features = properties.optimalTilingFeatures;
+  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+  if ((features & needed) != needed)
+    throw Error(
+        fmt::format("device '{}' cannot use R32G32B32A32_SFLOAT as a storage and sampled image (optimal "
+                    "tiling features {:#x}), which the patch textures need",
+                    context_.info.name, features));
+  const bool linear = (features & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+  if (!linear)
+    logWarning("device '{}' cannot filter R32G32B32A32_SFLOAT linearly: the patch textures are sampled nearest",
+               context_.info.name);
+
+  const uint32_t res = settings_.resolution;
+  const uint32_t group = gpu::kPatchWorkgroupSize;
+  tileSize_ = group * std::max(1u, res / (gpu::kPatchTileDivisor * group));
+  // Height-buffer columns 0..res+1 start anywhere in a tile: at most this many tiles per side.
+  maxTilesPerSide_ = (tileSize_ - 1 + res + 2 + tileSize_ - 1) / tileSize_;
+  const VkDeviceSize tiles = VkDeviceSize(maxTilesPerSide_) * maxTilesPerSide_;
+  const VkDeviceSize tableRows = tiles * gpu::kTerrainMaxLayers * gpu::kNoiseMaxOctaves;
+  const VkDeviceSize side = res + 2;
+  try {
+    image_ = vk::createImage2DArray(context_, {res, res}, settings_.levelCount, kFormat,
+                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
+      // Undefined contents to GENERAL, the only layout the image is used in; the fence wait
+      // orders this before everything update() records later.
+      vk::transitionImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    });
+
+    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    samplerInfo.magFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    samplerInfo.minFilter = samplerInfo.magFilter;
+    samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.minLod = 0.0f;
+    samplerInfo.maxLod = 0.0f;
+    VK_CHECK(vkCreateSampler(context_.device, &samplerInfo, nullptr, &sampler_));
+
+    layers_.resize(settings_.levelCount);
+    contents_.resize(settings_.levelCount);
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    for (LayerResources& layer : layers_) {
+      const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
+      layer.level = vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload);
+      layer.remainders = vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
+      layer.shifts = vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+      layer.heights = vk::createBuffer(context_, side * side * sizeof(float), storage, vk::MemoryUsage::DeviceLocal);
+    }
+    createPipelines();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+PatchTextures::~PatchTextures() { release(); }
+
+void PatchTextures::release() {
+  // The descriptor sets go with their pipelines' pools.
+  vk::destroyComputePipeline(context_, normalPipeline_);
+  vk::destroyComputePipeline(context_, heightPipeline_);
+  for (LayerResources& layer : layers_) {
+    vk::destroyBuffer(context_, layer.heights);
+    vk::destroyBuffer(context_, layer.shifts);
+    vk::destroyBuffer(context_, layer.remainders);
+    vk::destroyBuffer(context_, layer.level);
+  }
+  layers_.clear();
+  if (sampler_) vkDestroySampler(context_.device, sampler_, nullptr);
+  sampler_ = VK_NULL_HANDLE;
+  vk::destroyImage(context_, image_);
+}
+
+void PatchTextures::createPipelines() {
+  vk::destroyComputePipeline(context_, normalPipeline_);
+  vk::destroyComputePipeline(context_, heightPipeline_);
+  specialization_ = specializationFor(data_.planet());
+  const uint32_t sets = settings_.levelCount;
+  heightPipeline_ = vk::createComputePipeline(context_, kSpv_patch_height_comp, kBindings, 0, specialization_, sets);
+  normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
+  const VkDescriptorType buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  for (LayerResources& layer : layers_) {
+    for (const vk::ComputePipeline* pipeline : {&heightPipeline_, &normalPipeline_}) {
+      VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, layer.level);
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, layer.remainders);
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, layer.shifts);
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, layer.heights);
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLayers, buffer, data_.layers());
+      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingPermutations, buffer, data_.permutations());
+      vk::writeImageDescriptor(context_, set, gpu::kPatchBindingImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, image_.view,
+                               VK_IMAGE_LAYOUT_GENERAL);
+      (pipeline == &heightPipeline_ ? layer.heightSet : layer.normalSet) = set;
+    }
+  }
+}
+
+void PatchTextures::invalidate() {
+  for (LayerContent& content : contents_) content.valid = false;
+}
+
+void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources) {
+  const PlanetDescription& planet = data_.planet();
+  const CubeFace face = cubeFace(layout.face);
+  const double texel = std::ldexp(1.0, level.exponent);
+  const int64_t size = tileSize_;
+
+  gpu::PatchLevelParams params{};
+  params.axisA = glm::vec4(glm::vec3(face.axisA), 0.0f);
+  params.axisB = glm::vec4(glm::vec3(face.axisB), 0.0f);
+  params.texelSize = float(texel);
+  params.radiusM = float(planet.radiusM);
+  params.baseHeightM = float(planet.baseHeightM);
+  params.heightScale = float(planet.heightScale);
+  // Height-buffer column 0 is face index originA − 1; tiles start at multiples of the tile size.
+  const int64_t firstA = level.originA - 1, firstB = level.originB - 1;
+  const int64_t tileA = floorDiv(firstA, size), tileB = floorDiv(firstB, size);
+  params.shiftA = int32_t(firstA - tileA * size);
+  params.shiftB = int32_t(firstB - tileB * size);
+  params.tileSize = tileSize_;
+  const int64_t span = int64_t(layout.resolution) + 2;
+  const uint32_t tilesA = uint32_t((params.shiftA + span + size - 1) / size);
+  const uint32_t tilesB = uint32_t((params.shiftB + span + size - 1) / size);
+  params.tilesPerSide = std::max(tilesA, tilesB);
+  params.resolution = layout.resolution;
+  params.layerCount = uint32_t(planet.layers.size());
+  params.imageLayer = level.layer;
+  params.firstGroupA = uint32_t(params.shiftA) / gpu::kPatchWorkgroupSize;
+  params.firstGroupB = uint32_t(params.shiftB) / gpu::kPatchWorkgroupSize;
+  resources.heightGroupsA = groupsFor(uint32_t(params.shiftA + span)) - params.firstGroupA;
+  resources.heightGroupsB = groupsFor(uint32_t(params.shiftB + span)) - params.firstGroupB;
+  const double spacingM = patchTexelSpacingM(layout, level, planet.radiusM);
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const OctaveBudget budget = octaveBudget(planet.layers[l], spacingM);
+    params.budgets[l] = {budget.octaves, budget.lastOctaveWeight, 0u, 0u};
+  }
+  char* levelData = static_cast<char*>(resources.level.mapped());
+  std::memcpy(levelData, &params, sizeof(params));
+
+  // Each tile's anchor, its centre texel (face index k·T + T/2), in double; then its tables.
+  auto* tiles = reinterpret_cast<gpu::PatchTile*>(levelData + sizeof(params));
+  auto* remainders = static_cast<glm::vec4*>(resources.remainders.mapped());
+  auto* shifts = static_cast<glm::uvec4*>(resources.shifts.mapped());
+  const size_t rowsPerTile = planet.layers.size() * gpu::kNoiseMaxOctaves;
+  for (uint32_t ty = 0; ty < tilesB; ++ty) {
+    for (uint32_t tx = 0; tx < tilesA; ++tx) {
+      const double a = (double((tileA + tx) * size + size / 2) + 0.5) * texel;
+      const double b = (double((tileB + ty) * size + size / 2) + 0.5) * texel;
+      const glm::dvec3 g = face.normal + a * face.axisA + b * face.axisB;
+      const double s = glm::length(g);
+      const glm::dvec3 c = g / s;
+      const uint32_t index = ty * params.tilesPerSide + tx;
+      tiles[index] = {glm::vec4(glm::vec3(c), float(s)), glm::vec4(float(a), float(b), 0.0f, 0.0f)};
+      const OctaveTables tables = buildOctaveTables(planet, planet.radiusM * c);
+      std::copy(tables.remainders.begin(), tables.remainders.end(), remainders + index * rowsPerTile);
+      std::copy(tables.shifts.begin(), tables.shifts.end(), shifts + index * rowsPerTile);
+    }
+  }
+  context_.allocator.flush(resources.level.allocation);
+  context_.allocator.flush(resources.remainders.allocation);
+  context_.allocator.flush(resources.shifts.allocation);
+}
+
+uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
+  if (layout.resolution != settings_.resolution)
+    throw Error(fmt::format("patch layout resolution {} differs from the patch textures' {}", layout.resolution,
+                            settings_.resolution));
+  if (layout.levels.size() != settings_.levelCount)
+    throw Error(
+        fmt::format("patch layout has {} levels, the patch textures {}", layout.levels.size(), settings_.levelCount));
+  cubeFace(layout.face);  // throws for a bad face
+  std::vector<bool> used(settings_.levelCount, false);
+  for (const PatchLevel& level : layout.levels) {
+    if (level.layer >= settings_.levelCount || used[level.layer])
+      throw Error(
+          fmt::format("patch level layer {} is outside 0..{} or used twice", level.layer, settings_.levelCount - 1));
+    used[level.layer] = true;
+    if (level.exponent < -kMaxAbsExponent || level.exponent > kMaxAbsExponent)
+      throw Error(fmt::format("patch level exponent must be in [{}, {}], got {}", -kMaxAbsExponent, kMaxAbsExponent,
+                              level.exponent));
+  }
+  // The planet's layer types or hashes changed: the height pipeline is specialized on them.
+  // The previous update's command buffer has completed (see the header), so the old pipelines
+  // are no longer in use.
+  if (specializationFor(data_.planet()) != specialization_) {
+    createPipelines();
+    invalidate();
+  }
+
+  std::vector<const PatchLevel*> stale;
+  for (const PatchLevel& level : layout.levels) {
+    const LayerContent& held = contents_[level.layer];
+    if (held.valid && held.face == layout.face && held.exponent == level.exponent && held.originA == level.originA &&
+        held.originB == level.originB)
+      continue;
+    stale.push_back(&level);
+  }
+  if (stale.empty()) return 0;
+
+  for (const PatchLevel* level : stale) writeLevel(layout, *level, layers_[level->layer]);
+
+  // Earlier frames' fragment shaders may still sample these layers and an earlier update's
+  // passes used the height buffers: both finish before the new writes (write-after-read).
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.pipeline);
+  for (const PatchLevel* level : stale) {
+    const LayerResources& resources = layers_[level->layer];
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.layout, 0, 1, &resources.heightSet, 0,
+                            nullptr);
+    vkCmdDispatch(cmd, resources.heightGroupsA, resources.heightGroupsB, 1);
+  }
+  // The normal pass reads the heights (with their border) that the height pass wrote.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  const uint32_t normalGroups = groupsFor(settings_.resolution);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.pipeline);
+  for (const PatchLevel* level : stale) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.layout, 0, 1,
+                            &layers_[level->layer].normalSet, 0, nullptr);
+    vkCmdDispatch(cmd, normalGroups, normalGroups, 1);
+  }
+  // The terrain's fragment shader samples the new texels.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+
+  for (const PatchLevel* level : stale)
+    contents_[level->layer] = {true, layout.face, level->exponent, level->originA, level->originB};
+  return uint32_t(stale.size());
+}
+
+}  // namespace planet

@@ -1,0 +1,118 @@
+// World-anchored patch textures (issue 3, "Patch textures by compute"): the levels of a
+// PatchLayout (patch_layout.h) rendered by compute into one 2D-array image, texel = (unit outward
+// surface normal in the planet frame, terrain height in metres above the radius sphere).
+//
+// Precision and stability (DESIGN.md, "Earth-scale precision"): no float position of size R is
+// ever formed. The texels are grouped into tiles fixed on the cube face (shared/patch_params.h);
+// each tile's anchor (its centre texel) and octave tables (terrain_rebase.h) are computed in
+// double on the CPU, and each texel is evaluated from its exact face-coordinate offset to its
+// tile's anchor. So a texel's value depends only on where it lies on the face and on its level's
+// octave budget, octaveBudget(layer, patchTexelSpacingM(...)): a level that moves by whole
+// recentre steps reproduces the texels it keeps (up to the budget's change with the level's
+// centre, at most an ulp of the height), and a level is recomputed only when its (face,
+// exponent, origin) changed.
+//
+// Two compute passes per rebuilt level: patch_height.comp evaluates heights for the level plus a
+// one-texel border into a per-layer buffer; patch_normal.comp takes central differences of the
+// surface points (R + h)·p of the four neighbours and writes (normal, height).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "render/patch_layout.h"
+#include "vk/buffer.h"
+#include "vk/image.h"
+#include "vk/pipeline.h"
+
+namespace planet::vk {
+class Context;
+}
+
+namespace planet {
+
+class PlanetGpuData;
+
+class PatchTextures {
+ public:
+  // The image format: 32-bit float, because heights of thousands of metres must keep
+  // millimetres (a half float keeps 2 m at 4 km).
+  static constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+  // Validates `settings` (validatePatchSettings) and that the device can store to and sample the
+  // format; without linear filtering of it the sampler falls back to nearest (logged). `data`
+  // must outlive this object. The image starts in VK_IMAGE_LAYOUT_GENERAL with every level
+  // marked stale (one blocking submission here).
+  PatchTextures(vk::Context& context, const PlanetGpuData& data, const PatchSettings& settings);
+  ~PatchTextures();
+  PatchTextures(const PatchTextures&) = delete;
+  PatchTextures& operator=(const PatchTextures&) = delete;
+
+  // Records into `cmd` the compute work that brings every level of `layout` up to date: a level
+  // is rebuilt when its layer does not already hold exactly (face, exponent, originA, originB)
+  // for this planet, or after invalidate(). Returns how many levels it recorded a rebuild for
+  // (0: nothing recorded, not even a barrier). The rebuilt levels' parameters and octave tables
+  // are written now into host-visible buffers owned per layer, so the caller must let `cmd`
+  // complete (wait for its fence) before calling update() again, and must submit `cmd`: the
+  // levels count as up to date from this call on. The image stays in VK_IMAGE_LAYOUT_GENERAL;
+  // the recorded work ends with a barrier that makes it visible to fragment-shader sampling.
+  // The height pass is specialized on the planet's layer count, types and hashes; should those
+  // differ from the last call's, both pipelines are recreated here and every level rebuilt.
+  // Throws planet::Error if layout.resolution or the number of levels differs from the
+  // settings, for a bad face, a layer outside 0..levelCount−1 or used twice, or an exponent
+  // outside [−60, 60]; then nothing was recorded or marked up to date.
+  uint32_t update(VkCommandBuffer cmd, const PatchLayout& layout);
+
+  // Marks every level stale, e.g. after the planet's parameters changed.
+  void invalidate();
+
+  // 2D array of settings().levelCount layers of resolution² texels, format kFormat, always in
+  // VK_IMAGE_LAYOUT_GENERAL (between update()s), usage sampled + storage (+ transfer).
+  const vk::Image& image() const { return image_; }
+  // Linear filtering (nearest where the device cannot filter kFormat), clamp to edge, no mips.
+  VkSampler sampler() const { return sampler_; }
+  const PatchSettings& settings() const { return settings_; }
+
+ private:
+  // What a layer holds; valid = false after construction and invalidate().
+  struct LayerContent {
+    bool valid = false;
+    int face = 0;
+    int exponent = 0;
+    int64_t originA = 0;
+    int64_t originB = 0;
+  };
+  struct LayerResources {
+    vk::Buffer level;       // host-visible: gpu::PatchLevelParams, then gpu::PatchTile per tile
+    vk::Buffer remainders;  // host-visible: each tile's octave remainders
+    vk::Buffer shifts;      // host-visible: each tile's octave lattice shifts
+    vk::Buffer heights;     // device-local: (resolution + 2)² floats
+    VkDescriptorSet heightSet = VK_NULL_HANDLE;
+    VkDescriptorSet normalSet = VK_NULL_HANDLE;
+    uint32_t heightGroupsA = 0;  // the height pass's dispatch for the level last written
+    uint32_t heightGroupsB = 0;
+  };
+
+  void release();
+  // (Re)creates both pipelines, the height one specialized for the planet's current layers,
+  // and points each layer's descriptor sets at its resources.
+  void createPipelines();
+  void writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources);
+
+  vk::Context& context_;
+  const PlanetGpuData& data_;
+  PatchSettings settings_;
+  uint32_t tileSize_ = 1;  // texels per tile side
+  uint32_t maxTilesPerSide_ = 1;
+  std::vector<uint32_t> specialization_;  // of the height pipeline (gpu::kPatchSpec*)
+  vk::ComputePipeline heightPipeline_;
+  vk::ComputePipeline normalPipeline_;
+  vk::Image image_;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  std::vector<LayerResources> layers_;
+  std::vector<LayerContent> contents_;
+};
+
+}  // namespace planet

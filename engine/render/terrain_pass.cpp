@@ -1,0 +1,342 @@
+#include "render/terrain_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "planet/octave_budget.h"
+#include "planet/terrain_height.h"
+#include "render/patch_textures.h"
+#include "spv/terrain.frag.h"
+#include "spv/terrain.vert.h"
+#include "spv/terrain_heights.comp.h"
+#include "spv/terrain_normals.comp.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+#include "vk/graphics_pipeline.h"
+#include "vk/pipeline.h"
+#include "vk/timer.h"
+
+namespace planet {
+namespace {
+
+constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // frame
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // mesh
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // surface
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // normals
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // attributes
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // layers
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // remainders
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // shifts
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // permutations
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // budgets
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // patches
+};
+constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
+
+glm::vec4 toVec4(const glm::vec3& v, float w = 0.0f) { return glm::vec4(v, w); }
+
+}  // namespace
+
+double ringSpacingM(const ClipmapParams& params, double radiusM, uint32_t ring) {
+  const uint32_t rings = clipmapRingCount(params);
+  if (ring >= rings) return radiusM * clipmapRingTheta(params, rings - 1);  // the pole: its fan's radius
+  const double theta = clipmapRingTheta(params, ring);
+  const double inner = clipmapRingTheta(params, ring + 1);
+  const double along = std::sin(theta) * 2.0 * std::numbers::pi / double(params.numPhi);
+  return radiusM * std::max(theta - inner, along);
+}
+
+TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
+                         VkFormat colorFormat, VkFormat depthFormat)
+    : context_(context), planet_(planet), settings_(settings) {
+  if (settings.subPixelRings == 0 || settings.subPixelRings > 64)
+    throw Error(fmt::format("sub-pixel ring factor {} is outside 1..64", settings.subPixelRings));
+  mesh_ = buildClipmapMesh(settings.mesh);
+  maxTerrainHeightM_ = estimateMaxTerrainHeightM(planet);
+  try {
+    data_ = std::make_unique<PlanetGpuData>(context, planet);
+    PatchSettings patchSettings = settings.patchSettings;
+    if (!settings.patches) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
+    patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
+
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    const VkDeviceSize vertexCount = mesh_.vertexCount();
+    // Static data, uploaded once (the mesh is never rebuilt per frame).
+    meshVertices_ =
+        vk::createBuffer(context, vertexCount * sizeof(ClipmapVertex), storage, vk::MemoryUsage::DeviceLocal);
+    vk::uploadBuffer(context, meshVertices_, mesh_.vertices.data(), vertexCount * sizeof(ClipmapVertex));
+    const uint32_t rings = mesh_.ringCount();
+    const uint32_t n = settings.mesh.numPhi;
+    std::vector<uint32_t> indices = mesh_.indices;
+    indices.reserve(indices.size() + size_t(rings) * 3 * n);
+    for (uint32_t ring = 0; ring < rings; ++ring)
+      for (uint32_t i = 0; i < n; ++i)
+        indices.insert(indices.end(),
+                       {mesh_.vertexIndex(ring, i), mesh_.vertexIndex(ring, (i + 1) % n), mesh_.poleVertex()});
+    indices_ = vk::createBuffer(context, indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                vk::MemoryUsage::DeviceLocal);
+    vk::uploadBuffer(context, indices_, indices.data(), indices.size() * sizeof(uint32_t));
+
+    // Octave budgets per ring (and the pole), from the ring spacing: constant for a mesh.
+    std::vector<gpu::RingBudget> budgets(rings + 1, gpu::RingBudget{});
+    for (uint32_t ring = 0; ring <= rings; ++ring) {
+      const double spacing = settings.limitOctaves ? ringSpacingM(settings.mesh, planet.radiusM, ring) : 0.0;
+      for (size_t l = 0; l < planet.layers.size(); ++l) {
+        const OctaveBudget budget = octaveBudget(planet.layers[l], spacing);
+        budgets[ring].octaves[l] = budget.octaves;
+        budgets[ring].lastOctaveWeight[l] = budget.lastOctaveWeight;
+      }
+    }
+    budgets_ =
+        vk::createBuffer(context, budgets.size() * sizeof(gpu::RingBudget), storage, vk::MemoryUsage::DeviceLocal);
+    vk::uploadBuffer(context, budgets_, budgets.data(), budgets.size() * sizeof(gpu::RingBudget));
+
+    surface_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
+    normals_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
+    attributes_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
+    // Per-frame data the CPU writes: host-visible.
+    remainders_ = vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
+    shifts_ = vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+    uniforms_ = vk::createBuffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                 vk::MemoryUsage::Upload);
+
+    const VkShaderStageFlags stages =
+        VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    setLayout_ = vk::createSetLayout(context, kBindingTypes, stages);
+    pool_ = vk::createDescriptorPool(context, kBindingTypes, 1);
+    set_ = vk::allocateSet(context, pool_, setLayout_);
+    const vk::Buffer* buffers[] = {
+        &uniforms_, &meshVertices_,         &surface_, &normals_, &attributes_, &data_->layers(), &remainders_,
+        &shifts_,   &data_->permutations(), &budgets_};
+    for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
+      vk::writeBufferDescriptor(context, set_, b, kBindingTypes[b], *buffers[b]);
+    vk::writeImageDescriptor(context, set_, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
+
+    layout_ =
+        vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
+    heightsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_heights_comp, layout_);
+    normalsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_);
+    vk::GraphicsPipelineDesc desc;
+    desc.vertexSpirv = kSpv_terrain_vert;
+    desc.fragmentSpirv = kSpv_terrain_frag;
+    desc.layout = layout_;
+    desc.colorFormat = colorFormat;
+    desc.depthFormat = depthFormat;
+    desc.polygonMode = settings.wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
+    // The mesh's triangles are counter-clockwise seen from outside. The projection's y flip and
+    // Vulkan's y-down framebuffer cancel, so they stay counter-clockwise on screen.
+    desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    desc.cullMode = settings.wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    drawPipeline_ = vk::createGraphicsPipeline(context, desc);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+TerrainPass::~TerrainPass() { release(); }
+
+void TerrainPass::release() {
+  VkDevice device = context_.device;
+  if (drawPipeline_) vkDestroyPipeline(device, drawPipeline_, nullptr);
+  if (normalsPipeline_) vkDestroyPipeline(device, normalsPipeline_, nullptr);
+  if (heightsPipeline_) vkDestroyPipeline(device, heightsPipeline_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
+  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
+  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  drawPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+  pool_ = VK_NULL_HANDLE;
+  setLayout_ = VK_NULL_HANDLE;
+  for (vk::Buffer* b :
+       {&uniforms_, &shifts_, &remainders_, &attributes_, &normals_, &surface_, &budgets_, &indices_, &meshVertices_})
+    vk::destroyBuffer(context_, *b);
+  patches_.reset();
+  data_.reset();
+}
+
+const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
+  const double radius = planet_.radiusM;
+  TerrainFrameInfo info;
+  // A camera that did not move keeps its frame bit for bit (a transport by angle 0 would still
+  // round), so nothing downstream is recomputed.
+  if (previousOrientation_ && previousOrientation_->cameraPlanetFrame == view.camera.position &&
+      previousOrientation_->radiusM == radius)
+    info.orientation = *previousOrientation_;
+  else
+    info.orientation =
+        orientClipmap(view.camera.position, radius, previousOrientation_ ? &*previousOrientation_ : nullptr);
+  previousOrientation_ = info.orientation;
+  const glm::dvec3 nadir = info.orientation.nadirDirection();
+  const double altitude = info.orientation.altitudeM;
+
+  // Cuts: horizon from the height above the radius sphere (with the terrain's maximum as
+  // margin), pixel cut from the height above the ground actually below the camera.
+  info.groundHeightM = terrainHeightM(planet_, nadir);
+  const double ground = planet_.hasOcean ? std::max(info.groundHeightM, planet_.seaLevelM) : info.groundHeightM;
+  info.heightAboveGroundM = std::max(altitude - ground, kClipmapMinAltitudeM * 0.01);
+  const ClipmapParams& params = settings_.mesh;
+  const double thetaMax = horizonTheta(radius, altitude, maxTerrainHeightM_);
+  const double thetaMin = minUsefulTheta(radius, std::max(info.heightAboveGroundM, kClipmapMinAltitudeM), view.fovYRad,
+                                         view.height * settings_.subPixelRings, params.ringsPerLevel);
+  info.rings = selectRings(params.levels, params.ringsPerLevel, thetaMax, thetaMin);
+  const uint32_t rings = mesh_.ringCount();
+  info.heightFirstRing = info.rings.firstRing > 0 ? info.rings.firstRing - 1 : 0;
+  info.heightLastRing = std::min(info.rings.lastRing + 1, rings - 1);
+  info.metresPerVertexAtNadir =
+      metresPerVertexAtNadir(radius, params.levels, params.ringsPerLevel, params.numPhi, info.rings.lastRing);
+  info.poleCapRadiusM = poleCapRadiusM(radius, params.levels, params.ringsPerLevel, info.rings.lastRing);
+  info.triangles = uint64_t(info.rings.lastRing - info.rings.firstRing) * 2 * params.numPhi + params.numPhi;
+  info.nearPlaneM = std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4);
+
+  // Octave tables around the anchor, the sea-sphere point below the camera.
+  tables_ = buildOctaveTables(planet_, radius * nadir);
+  vk::uploadBuffer(context_, remainders_, tables_.remainders.data(), tables_.remainders.size() * sizeof(glm::vec4));
+  vk::uploadBuffer(context_, shifts_, tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
+
+  // Patch layout from the ground footprint of a pixel at the nadir.
+  const double nadirPixelM =
+      radius * pixelFootprintTheta(radius, std::max(info.heightAboveGroundM, 0.01), view.fovYRad, view.height);
+  if (settings_.patches) info.patchLayout = choosePatchLayout(patches_->settings(), radius, nadir, nadirPixelM);
+
+  // View: the local frame with the camera at its origin.
+  const glm::dmat3 planetToLocal = glm::transpose(info.orientation.localToPlanet);
+  const glm::dmat4 viewM = viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
+  const glm::dmat4 projection =
+      reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
+  frame_ = info;
+  writeUniforms(view, projection * viewM);
+
+  pending_ = ComputeKey{};
+  pending_.camera = view.camera.position;
+  pending_.orientation = info.orientation.localToPlanet;
+  pending_.firstRing = info.rings.firstRing;
+  pending_.lastRing = info.rings.lastRing;
+  if (settings_.patches && !info.patchLayout.levels.empty()) {
+    pending_.face = info.patchLayout.face;
+    pending_.exponent = info.patchLayout.levels[0].exponent;
+    pending_.originA = info.patchLayout.levels[0].originA;
+    pending_.originB = info.patchLayout.levels[0].originB;
+  }
+  return frame_;
+}
+
+void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection) {
+  const ClipmapFrame& o = frame_.orientation;
+  gpu::FrameUniforms& u = uniformData_;
+  u = gpu::FrameUniforms{};
+  u.viewProjection = glm::mat4(viewProjection);
+  u.localToPlanet = glm::mat4(glm::mat3(o.localToPlanet));
+  u.planetToLocal = glm::mat4(glm::mat3(glm::transpose(o.localToPlanet)));
+  u.camera = glm::vec4(float(o.altitudeM), float(planet_.radiusM), 0.0f, 0.0f);
+  const PlanetColors& c = planet_.colors;
+  u.planet =
+      glm::vec4(float(planet_.seaLevelM), planet_.hasOcean ? 1.0f : 0.0f, float(c.beachHeightM), float(c.snowLineM));
+  u.shading = glm::vec4(float(std::sin(c.iceCapLatitudeDeg * std::numbers::pi / 180.0)), float(int(c.scheme)),
+                        settings_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
+  const glm::dvec3 sunLocal = glm::transpose(o.localToPlanet) * view.sunDirection;
+  u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(settings_.sunIntensity));
+  u.colorDeepWater = toVec4(c.deepWater);
+  u.colorShallowWater = toVec4(c.shallowWater);
+  u.colorBeach = toVec4(c.beach);
+  u.colorLowland = toVec4(c.lowland);
+  u.colorHighland = toVec4(c.highland);
+  u.colorCliff = toVec4(c.cliff);
+  u.colorSnow = toVec4(c.snow);
+
+  const PatchLayout& layout = frame_.patchLayout;
+  if (!layout.levels.empty()) {
+    // The reference point: the finest level's texel-grid corner. Per-vertex face offsets are
+    // measured from it in float; everything large is subtracted here in double.
+    const PatchLevel& finest = layout.levels[0];
+    const double refA = std::ldexp(double(finest.originA), finest.exponent);
+    const double refB = std::ldexp(double(finest.originB), finest.exponent);
+    const glm::dvec3 ref = cubeFaceDirection(layout.face, refA, refB);
+    const CubeFace face = cubeFace(layout.face);
+    u.faceAxisA = glm::vec4(glm::vec3(face.axisA), float(glm::dot(ref, face.axisA)));
+    u.faceAxisB = glm::vec4(glm::vec3(face.axisB), float(glm::dot(ref, face.axisB)));
+    u.faceNormal = glm::vec4(glm::vec3(face.normal), float(glm::dot(ref, face.normal)));
+    u.refMinusNadir = glm::vec4(glm::vec3(ref - o.nadirDirection()), float(layout.levels.size()));
+    for (size_t j = 0; j < layout.levels.size(); ++j) {
+      const PatchLevel& level = layout.levels[j];
+      const double texel = std::ldexp(1.0, level.exponent);
+      u.patchLevels[j] =
+          glm::vec4(float(level.layer), float(1.0 / (texel * layout.resolution)),
+                    float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
+    }
+  }
+  vk::uploadBuffer(context_, uniforms_, &u, sizeof(u));
+}
+
+void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  frame_.heightsComputed = !(computed_ && *computed_ == pending_);
+  frame_.verticesEvaluated = 0;
+  const uint32_t n = settings_.mesh.numPhi;
+  if (frame_.heightsComputed) {
+    if (timer) timer->begin(cmd, "heights");
+    // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    gpu::TerrainComputePush push{};
+    push.numPhi = n;
+    push.ringCount = mesh_.ringCount();
+    push.layerCount = uint32_t(planet_.layers.size());
+    push.baseHeightM = float(planet_.baseHeightM);
+    push.heightScale = float(planet_.heightScale);
+    push.bandFrequency = float(1.0 / settings_.bandWavelengthM);
+    push.firstRing = frame_.heightFirstRing;
+    push.lastRing = frame_.heightLastRing;
+    push.poleNeighbourRing = frame_.rings.lastRing;
+    push.firstVertex = frame_.heightFirstRing * n;
+    push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
+    frame_.verticesEvaluated = push.vertexCount + 1;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_);
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(
+        cmd, (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize, 1, 1);
+    // Normals read the heights just written.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    push.firstVertex = frame_.rings.firstRing * n;
+    push.vertexCount = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalsPipeline_);
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(
+        cmd, (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize, 1, 1);
+    // The vertex shader reads positions, normals and attributes.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    if (timer) timer->end(cmd);
+    computed_ = pending_;
+  }
+  frame_.patchLevelsRebuilt = 0;
+  if (settings_.patches) {
+    if (timer) timer->begin(cmd, "patches");
+    frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout);
+    if (timer) timer->end(cmd);
+  }
+}
+
+void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  if (timer) timer->begin(cmd, "terrain");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  // Bands firstRing..lastRing−1, then the fan that closes ring lastRing at the pole.
+  const IndexRange bands = mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing);
+  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
+  const uint32_t n = settings_.mesh.numPhi;
+  vkCmdDrawIndexed(cmd, 3 * n, 1, mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 0, 0);
+  if (timer) timer->end(cmd);
+}
+
+}  // namespace planet

@@ -1,0 +1,157 @@
+// The terrain of one planet (issue 3): the spherical-clipmap mesh uploaded once, the compute
+// passes that give its vertices heights and normals each frame the camera moved, the patch
+// textures, and the draw. DESIGN.md "One frame" steps 1–3 for the terrain.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "planet/clipmap_mesh.h"
+#include "planet/clipmap_orientation.h"
+#include "planet/planet_description.h"
+#include "planet/planet_gpu_data.h"
+#include "planet/terrain_rebase.h"
+#include "render/camera.h"
+#include "render/patch_layout.h"
+#include "shared/render_params.h"
+#include "vk/buffer.h"
+
+namespace planet::vk {
+class Context;
+class GpuTimer;
+}  // namespace planet::vk
+
+namespace planet {
+
+class PatchTextures;
+
+struct TerrainSettings {
+  // 30 levels reach θ = π·2^−30 (2 cm on Earth): deep enough that, at 2 m altitude, rings are
+  // drawn down to an eighth of a pixel and the fan that closes the mesh is a few pixels wide.
+  ClipmapParams mesh{30, 16, 128};
+  // Rings are drawn down to a spacing of 1/subPixelRings of a pixel at the nadir; inside that a
+  // fan to the pole closes the hole (its radius is about m/ln 2 ≈ 23 spacings, so 8 keeps it
+  // within ~3 pixels).
+  uint32_t subPixelRings = 8;
+  bool limitOctaves = true;  // octave budgets per ring (off: every octave everywhere, for comparisons)
+  bool patches = true;       // per-pixel detail from the patch textures
+  PatchSettings patchSettings;
+  bool wireframe = false;           // debug: triangle edges only
+  double bandWavelengthM = 6000.0;  // scale of the noise that frays colour-band edges
+  double ambient = 0.10;            // sky light on ground that faces away from the sun (until the sky pass lights it)
+  double sunIntensity = 1.0;
+};
+
+// What the CPU decided for a frame.
+struct TerrainFrameInfo {
+  ClipmapFrame orientation;
+  RingRange rings;
+  uint32_t heightFirstRing = 0;  // rings whose heights are computed (one beyond the drawn ones)
+  uint32_t heightLastRing = 0;
+  double groundHeightM = 0.0;  // CPU reference height under the camera
+  double heightAboveGroundM = 0.0;
+  double nearPlaneM = 0.0;
+  double metresPerVertexAtNadir = 0.0;
+  double poleCapRadiusM = 0.0;
+  uint64_t triangles = 0;
+  uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped)
+  uint32_t patchLevelsRebuilt = 0;
+  bool heightsComputed = false;
+  PatchLayout patchLayout;
+};
+
+// The ground spacing of ring `ring`'s vertices on a sphere of radiusM: the larger of the radial
+// step to the next ring inward and the step along the ring (metresPerVertexAtNadir of
+// clipmap_orientation.h, for any ring; the innermost ring's inward neighbour is the pole). The
+// pole itself (ring = ring count) gets its fan's radius. The height pass limits each ring's
+// octaves to what this spacing can show (octave_budget.h).
+double ringSpacingM(const ClipmapParams& params, double radiusM, uint32_t ring);
+
+struct TerrainView {
+  CameraBasis camera;                   // planet frame, double
+  double fovYRad = 1.0471975511965976;  // 60°
+  uint32_t width = 960;
+  uint32_t height = 540;
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // planet frame, unit
+};
+
+class TerrainPass {
+ public:
+  TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
+              VkFormat colorFormat, VkFormat depthFormat);
+  ~TerrainPass();
+  TerrainPass(const TerrainPass&) = delete;
+  TerrainPass& operator=(const TerrainPass&) = delete;
+
+  // CPU half of a frame: orientation (transported from the previous frame), ring cut, octave
+  // tables, patch layout, uniforms. Returns what it decided.
+  const TerrainFrameInfo& prepare(const TerrainView& view);
+  // Compute half: heights and normals (skipped when nothing that feeds them changed since the
+  // last computed frame), then the patch levels that moved. Call after prepare().
+  void recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  // The draw, inside a dynamic-rendering scope with the target's formats.
+  void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
+
+  const ClipmapMesh& mesh() const { return mesh_; }
+  const TerrainFrameInfo& frame() const { return frame_; }
+  const OctaveTables& tables() const { return tables_; }
+  const PlanetDescription& planet() const { return planet_; }
+  // Per-vertex results of the compute passes (layouts in shaders/shared/render_params.h).
+  const vk::Buffer& surfaceBuffer() const { return surface_; }
+  const vk::Buffer& normalBuffer() const { return normals_; }
+  // The maximum terrain height the horizon cut allows for (estimated once per planet).
+  double maxTerrainHeightM() const { return maxTerrainHeightM_; }
+
+ private:
+  void release();
+  void writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection);
+
+  vk::Context& context_;
+  PlanetDescription planet_;
+  TerrainSettings settings_;
+  ClipmapMesh mesh_;
+  std::unique_ptr<PlanetGpuData> data_;
+  std::unique_ptr<PatchTextures> patches_;
+  double maxTerrainHeightM_ = 0.0;
+
+  vk::Buffer meshVertices_;
+  vk::Buffer indices_;  // the mesh's indices, then a fan to the pole for every ring
+  vk::Buffer surface_;
+  vk::Buffer normals_;
+  vk::Buffer attributes_;
+  vk::Buffer budgets_;
+  vk::Buffer remainders_;
+  vk::Buffer shifts_;
+  vk::Buffer uniforms_;
+
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline heightsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline normalsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline drawPipeline_ = VK_NULL_HANDLE;
+
+  TerrainFrameInfo frame_;
+  OctaveTables tables_;
+  std::optional<ClipmapFrame> previousOrientation_;
+  gpu::FrameUniforms uniformData_{};
+  // What the last computed heights were computed for: skip the compute when it is unchanged.
+  struct ComputeKey {
+    glm::dvec3 camera{0.0};
+    glm::dmat3 orientation{0.0};
+    uint32_t firstRing = 0, lastRing = 0;
+    int face = -1;
+    int exponent = 0;
+    int64_t originA = 0, originB = 0;
+    bool operator==(const ComputeKey&) const = default;
+  };
+  std::optional<ComputeKey> computed_;
+  ComputeKey pending_;
+};
+
+}  // namespace planet

@@ -1,0 +1,41 @@
+// Graphics pipelines for dynamic rendering (Vulkan 1.3): one vertex and one fragment shader from
+// embedded SPIR-V, no vertex input (shaders pull from storage buffers by gl_VertexIndex), one
+// colour attachment and an optional depth attachment, viewport and scissor dynamic.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+
+namespace planet::vk {
+
+class Context;
+
+struct GraphicsPipelineDesc {
+  std::span<const uint32_t> vertexSpirv;
+  std::span<const uint32_t> fragmentSpirv;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;  // LINE needs the fillModeNonSolid feature
+  VkCullModeFlags cullMode = VK_CULL_MODE_BACK_BIT;
+  VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  bool depthTest = true;
+  bool depthWrite = true;
+  VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z: nearer is larger
+  bool alphaBlend = false;                           // premultiplied-free "over" blending
+};
+
+VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);
+
+// A pipeline layout over one descriptor set layout plus a push-constant range for `stages`.
+VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
+                                      VkShaderStageFlags pushStages);
+
+// A compute pipeline over an existing layout (passes that share one set between compute and
+// graphics shaders).
+VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout);
+
+}  // namespace planet::vk

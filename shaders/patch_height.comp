@@ -1,0 +1,96 @@
+#version 450
+// Patch textures, pass 1 (engine/render/patch_textures.h): terrain heights of one level plus a
+// one-texel border, through the rebased octave tables the CPU built in double at each tile's
+// anchor (DESIGN.md, "Earth-scale precision"; shared/patch_params.h). Height-buffer texel
+// (i, j) is level texel (i − 1, j − 1); the border feeds the normal pass's central differences.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/patch_params.h"
+
+layout(local_size_x = kPatchWorkgroupSize, local_size_y = kPatchWorkgroupSize) in;
+
+// The planet's layer count, types and hashes (kPatchSpec*): one pipeline per planet.
+layout(constant_id = 0) const uint kSpecLayerCount = 1u;
+layout(constant_id = 1) const uint kSpecType0 = 1u;
+layout(constant_id = 2) const uint kSpecType1 = 1u;
+layout(constant_id = 3) const uint kSpecType2 = 1u;
+layout(constant_id = 4) const uint kSpecType3 = 1u;
+layout(constant_id = 5) const uint kSpecType4 = 1u;
+layout(constant_id = 6) const uint kSpecType5 = 1u;
+layout(constant_id = 7) const uint kSpecType6 = 1u;
+layout(constant_id = 8) const uint kSpecType7 = 1u;
+layout(constant_id = 9) const uint kSpecHash0 = 0u;
+layout(constant_id = 10) const uint kSpecHash1 = 0u;
+layout(constant_id = 11) const uint kSpecHash2 = 0u;
+layout(constant_id = 12) const uint kSpecHash3 = 0u;
+layout(constant_id = 13) const uint kSpecHash4 = 0u;
+layout(constant_id = 14) const uint kSpecHash5 = 0u;
+layout(constant_id = 15) const uint kSpecHash6 = 0u;
+layout(constant_id = 16) const uint kSpecHash7 = 0u;
+
+layout(std430, set = 0, binding = kPatchBindingLevel) readonly buffer Level {
+  PatchLevelParams level;
+  PatchTile tiles[];
+};
+layout(std430, set = 0, binding = kPatchBindingRemainders) readonly buffer Remainders { vec4 remainders[]; };
+layout(std430, set = 0, binding = kPatchBindingShifts) readonly buffer Shifts { uvec4 shifts[]; };
+layout(std430, set = 0, binding = kPatchBindingHeights) writeonly buffer Heights { float heights[]; };
+layout(std430, set = 0, binding = kPatchBindingLayers) readonly buffer Layers { TerrainLayer layers[]; };
+layout(std430, set = 0, binding = kPatchBindingPermutations) readonly buffer Permutations { uint permutations[]; };
+
+// Each layer has its own seed, so its own reference permutation table; each tile its own tables.
+uint gPermutationBase = 0u;
+uint gTableBase = 0u;
+#define PERM(i) permutations[gPermutationBase + (i)]
+#define OCTAVE_REMAINDER(layer, i) remainders[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
+#define OCTAVE_SHIFT(layer, i) shifts[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
+#include "common/noise.glsl"
+
+// Layer l's contribution at `offset` (sample minus tile anchor, metres), limited to the octaves
+// this level's texel spacing can show, the last one faded (octave_budget.h).
+float layerHeight(uint l, uint type, uint hash, vec3 offset) {
+  gPermutationBase = l * kNoisePermutationSize;
+  NoiseParams params = layers[l].noise;
+  params.type = type;
+  params.hash = hash;
+  params.octaves = level.budgets[l].octaves;
+  params.lastOctaveWeight = level.budgets[l].lastOctaveWeight;
+  OctaveWalk walk;
+  walk.q = vec3(0.0f);
+  walk.lacunarity = params.lacunarity;
+  walk.offset = offset;
+  walk.layer = l;
+  walk.octave = 0u;
+  walk.rebased = 1u;
+  return layers[l].amplitudeM * fractalNoise(params, walk);
+}
+
+void main() {
+  // Local texel of this invocation; its tile follows from the workgroup alone (tiles are whole
+  // workgroups), so the compiler sees the table reads as uniform.
+  uvec2 group = (gl_WorkGroupID.xy + uvec2(level.firstGroupA, level.firstGroupB)) * kPatchWorkgroupSize;
+  ivec2 local = ivec2(group + gl_LocalInvocationID.xy);
+  ivec2 id = local - ivec2(level.shiftA, level.shiftB);
+  int side = int(level.resolution) + 2;
+  if (id.x < 0 || id.y < 0 || id.x >= side || id.y >= side) return;
+  uvec2 tileXY = group / level.tileSize;
+  uint tile = tileXY.y * level.tilesPerSide + tileXY.x;
+  int size = int(level.tileSize);
+  int dx = local.x - int(tileXY.x) * size - size / 2;
+  int dy = local.y - int(tileXY.y) * size - size / 2;
+  gTableBase = tile * level.layerCount * kNoiseMaxOctaves;
+  // Sample minus anchor on the radius sphere, in metres: small, as the rebased walk needs.
+  precise vec3 offset =
+      level.radiusM * patchDirectionOffset(level.axisA.xyz, level.axisB.xyz, level.texelSize, tiles[tile], dx, dy);
+  // The layers in order, as terrainHeightM sums them; the constant conditions fold away.
+  precise float sum = level.baseHeightM;
+  if (kSpecLayerCount > 0u) sum += layerHeight(0u, kSpecType0, kSpecHash0, offset);
+  if (kSpecLayerCount > 1u) sum += layerHeight(1u, kSpecType1, kSpecHash1, offset);
+  if (kSpecLayerCount > 2u) sum += layerHeight(2u, kSpecType2, kSpecHash2, offset);
+  if (kSpecLayerCount > 3u) sum += layerHeight(3u, kSpecType3, kSpecHash3, offset);
+  if (kSpecLayerCount > 4u) sum += layerHeight(4u, kSpecType4, kSpecHash4, offset);
+  if (kSpecLayerCount > 5u) sum += layerHeight(5u, kSpecType5, kSpecHash5, offset);
+  if (kSpecLayerCount > 6u) sum += layerHeight(6u, kSpecType6, kSpecHash6, offset);
+  if (kSpecLayerCount > 7u) sum += layerHeight(7u, kSpecType7, kSpecHash7, offset);
+  heights[id.y * side + id.x] = level.heightScale * sum;
+}

@@ -1,0 +1,86 @@
+// The terrain pass (engine/render/terrain_pass.*): bindings and per-frame blocks shared by its
+// compute shaders (terrain_heights.comp, terrain_normals.comp) and its graphics shaders
+// (terrain.vert, terrain.frag).
+//
+// Frames (engine/planet/clipmap_orientation.h): the mesh's local frame has +z at the camera's
+// nadir. Every position the GPU sees is a float offset in the local frame from the anchor,
+// the point of the radius sphere straight below the camera; the camera itself sits at
+// (0, 0, cameraAltitude) in that system. Nothing of planet size ever reaches a float.
+#ifndef PLANET_SHARED_RENDER_PARAMS_H
+#define PLANET_SHARED_RENDER_PARAMS_H
+
+#include "shared/gpu_types.h"
+#include "shared/terrain_params.h"
+
+GPU_NAMESPACE_BEGIN
+
+GPU_CONST uint kPatchMaxLevelsGpu = 16u;  // = kPatchMaxLevels (engine/render/patch_layout.h)
+
+// Bindings of set 0, shared by all four terrain shaders.
+GPU_CONST uint kRenderBindingFrame = 0u;         // uniform FrameUniforms
+GPU_CONST uint kRenderBindingMesh = 1u;          // ClipmapVertex[] (vec4 direction, vec4 (θ, φ, ring, level))
+GPU_CONST uint kRenderBindingSurface = 2u;       // vec4[]: xyz = sea-sphere point − anchor (local), w = height m
+GPU_CONST uint kRenderBindingNormals = 3u;       // vec4[]: xyz = unit normal (local), w unused
+GPU_CONST uint kRenderBindingAttributes = 4u;    // vec4[]: face Δa, Δb, colour-band noise, sin(latitude)
+GPU_CONST uint kRenderBindingLayers = 5u;        // TerrainLayer[kTerrainMaxLayers]
+GPU_CONST uint kRenderBindingRemainders = 6u;    // vec4[kTerrainMaxLayers * kNoiseMaxOctaves]
+GPU_CONST uint kRenderBindingShifts = 7u;        // uvec4[kTerrainMaxLayers * kNoiseMaxOctaves]
+GPU_CONST uint kRenderBindingPermutations = 8u;  // uint[kTerrainMaxLayers * kNoisePermutationSize]
+GPU_CONST uint kRenderBindingBudgets = 9u;       // RingBudget[rings + 1] (the pole last)
+GPU_CONST uint kRenderBindingPatches = 10u;      // sampler2DArray: normal (planet frame), height m
+GPU_CONST uint kRenderBindingCount = 11u;
+GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
+
+// Octaves of every layer at one ring's vertex spacing (engine/planet/octave_budget.h).
+struct RingBudget {
+  uint octaves[kTerrainMaxLayers];
+  float lastOctaveWeight[kTerrainMaxLayers];
+};
+GPU_ASSERT_SIZE(RingBudget, 64)
+
+struct FrameUniforms {
+  mat4 viewProjection;  // local frame, camera at the origin → clip (reversed-Z, infinite far)
+  mat4 localToPlanet;   // rotation (upper 3×3): local → planet frame directions
+  mat4 planetToLocal;   // its transpose
+  vec4 camera;          // x: camera altitude above the radius sphere (m), y: radius (m), z: time (s), w: unused
+  vec4 planet;          // x: sea level (m), y: 1 if the planet has an ocean, z: beach height (m), w: snow line (m)
+  vec4 shading;         // x: sin(ice cap latitude), y: colour scheme, z: wireframe (1/0), w: ambient
+  vec4 sunLocal;        // xyz: unit direction toward the sun (local frame), w: sun intensity
+  vec4 colorDeepWater;  // rgb linear; w unused
+  vec4 colorShallowWater;
+  vec4 colorBeach;
+  vec4 colorLowland;
+  vec4 colorHighland;
+  vec4 colorCliff;
+  vec4 colorSnow;
+  // Patch textures: the face's axes in the local frame, and the reference point the per-vertex
+  // face offsets (attributes.xy) are measured from.
+  vec4 faceAxisA;       // xyz: A (planet frame), w: c_ref·A
+  vec4 faceAxisB;       // xyz: B (planet frame), w: c_ref·B
+  vec4 faceNormal;      // xyz: N (planet frame), w: c_ref·N
+  vec4 refMinusNadir;   // xyz: c_ref − nadir direction (planet frame, unit sphere), w: patch level count
+  // Per level (finest first): x: layer, y: 1 / (Δ·resolution), z, w: (a_ref − originA·Δ), (b_ref − originB·Δ)
+  vec4 patchLevels[kPatchMaxLevelsGpu];
+};
+GPU_ASSERT_SIZE(FrameUniforms, 688)
+
+// Push constants of the compute passes: which vertices to work on this frame.
+struct TerrainComputePush {
+  uint firstVertex;  // first vertex of the ring range (ring · numPhi)
+  uint vertexCount;  // vertices of the ring range; one more invocation handles the pole
+  uint numPhi;       // vertices per ring
+  uint ringCount;    // rings of the mesh (the pole is vertex ringCount · numPhi)
+  uint layerCount;
+  uint firstRing;    // the range's outermost and innermost rings (normals take neighbours inside it)
+  uint lastRing;
+  uint poleNeighbourRing;  // the ring whose vertices around the pole give the pole its normal
+  float baseHeightM;
+  float heightScale;
+  float bandFrequency;  // cycles per metre of the colour-band noise
+  float pad0;
+};
+GPU_ASSERT_SIZE(TerrainComputePush, 48)
+
+GPU_NAMESPACE_END
+
+#endif

@@ -1,0 +1,248 @@
+// The terrain renderer on lavapipe (issue 3, points 4, 7, 9, 11): vertex heights against the CPU
+// reference, no swimming, no recomputation when nothing moved, the limb where geometry puts
+// it, identical images for identical inputs, golden images.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/image_file.h"
+#include "gpu_fixture.h"
+#include "image_compare.h"
+#include "planet/terrain_height.h"
+#include "render/renderer.h"
+#include "vk/buffer.h"
+
+namespace planet::test {
+namespace {
+
+using TerrainRender = GpuTest;
+
+// A land point far from the noise origin (the precision rule must hold there).
+constexpr double kLat = 37.2;
+constexpr double kLon = -118.6;
+
+RenderSettings smallSettings(bool patches) {
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.terrain.patches = patches;
+  settings.terrain.patchSettings.resolution = 128;
+  settings.terrain.patchSettings.levelCount = 4;
+  return settings;
+}
+
+std::vector<glm::vec4> readSurface(vk::Context& context, TerrainPass& terrain) {
+  std::vector<glm::vec4> surface(terrain.mesh().vertexCount());
+  vk::readbackBuffer(context, terrain.surfaceBuffer(), surface.data(), surface.size() * sizeof(glm::vec4));
+  return surface;
+}
+
+// Height of the drawn surface (the triangles of the mesh, in their (θ, φ) parameterisation) at
+// a planet direction: what a viewer sees at that point of the planet.
+double drawnHeight(const TerrainPass& terrain, const std::vector<glm::vec4>& surface, const glm::dvec3& direction) {
+  const ClipmapMesh& mesh = terrain.mesh();
+  const glm::dvec2 thetaPhi = planetToLocalThetaPhi(terrain.frame().orientation, direction);
+  const uint32_t outer = mesh.innermostRingAtOrAbove(thetaPhi.x);
+  const uint32_t inner = outer + 1;
+  EXPECT_LT(inner, mesh.ringCount()) << "test point inside the pole fan";
+  const uint32_t n = mesh.params.numPhi;
+  const double step = 2.0 * std::numbers::pi / n;
+  const uint32_t i = std::min(uint32_t(thetaPhi.y / step), n - 1);
+  const double u = thetaPhi.y / step - i;
+  const double t = (mesh.ringTheta(outer) - thetaPhi.x) / (mesh.ringTheta(outer) - mesh.ringTheta(inner));
+  auto h = [&](uint32_t ring, uint32_t k) { return double(surface[mesh.vertexIndex(ring, k % n)].w); };
+  const double o0 = h(outer, i), o1 = h(outer, i + 1), n0 = h(inner, i), n1 = h(inner, i + 1);
+  // Triangles (o_i, o_i+1, n_i+1) and (o_i, n_i+1, n_i) of clipmap_mesh.h.
+  return u >= t ? o0 + u * (o1 - o0) + t * (n1 - o1) : o0 + t * (n0 - o0) + u * (n1 - n0);
+}
+
+TEST_F(TerrainRender, VertexHeightsMatchTheDoubleReferenceAtTheirOctaveBudget) {
+  const PlanetDescription planet = resolvePreset("earth");
+  Renderer renderer(context(), planet, smallSettings(false));
+  RenderResult result = renderer.render({kLat, kLon, 50.0, 30.0, -20.0}, {});
+  TerrainPass& terrain = renderer.terrain();
+  const std::vector<glm::vec4> surface = readSurface(context(), terrain);
+  const ClipmapMesh& mesh = terrain.mesh();
+  const TerrainFrameInfo& frame = terrain.frame();
+  double worstNear = 0.0, worstFar = 0.0;
+  for (uint32_t ring = frame.rings.firstRing; ring <= frame.rings.lastRing; ring += 7)
+    for (uint32_t i = 0; i < mesh.params.numPhi; i += 37) {
+      const ClipmapVertex& v = mesh.vertices[mesh.vertexIndex(ring, i)];
+      const glm::dvec3 direction = localToPlanetDirection(frame.orientation, v.theta, v.phi);
+      const double spacing = ringSpacingM(mesh.params, planet.radiusM, ring);
+      const double error = std::abs(surface[mesh.vertexIndex(ring, i)].w - terrainHeightM(planet, direction, spacing));
+      // Within 10 km of the camera the 1 cm requirement holds; beyond, float offsets of up to
+      // thousands of km move the sample by up to ~0.3 m along slopes of the coarse layers.
+      (v.theta * planet.radiusM < 1e4 ? worstNear : worstFar) =
+          std::max(v.theta * planet.radiusM < 1e4 ? worstNear : worstFar, error);
+    }
+  EXPECT_LT(worstNear, 0.01);
+  EXPECT_LT(worstFar, 0.5);
+  std::printf("vertex height vs double reference: max %.4f m within 10 km, %.4f m beyond\n", worstNear, worstFar);
+}
+
+TEST_F(TerrainRender, DrawnSurfaceDoesNotSwimWhenTheCameraMoves) {
+  // The moon preset's ridged layer is rough down to centimetres everywhere: the hard case.
+  const PlanetDescription planet = resolvePreset("moon");
+  // Fixed planet points 5..60 m from the camera's ground point, in several directions.
+  const glm::dvec3 ground = directionFromLatLon(kLat, kLon);
+  std::vector<glm::dvec3> points;
+  for (double distance : {5.0, 12.0, 25.0, 60.0})
+    for (double bearing : {10.0, 100.0, 200.0, 300.0})
+      points.push_back(travelGreatCircle(ground, bearing, distance, planet.radiusM));
+
+  auto measure = [&](bool limitOctaves, double& worstChange, double& spacingAtPoints) {
+    RenderSettings settings = smallSettings(false);
+    settings.terrain.limitOctaves = limitOctaves;
+    Renderer renderer(context(), planet, settings);
+    TerrainPass& terrain = renderer.terrain();
+    const double altitude = renderer.clampToGround({kLat, kLon, 0.0}).altitudeM + 8.0;
+    renderer.render({kLat, kLon, altitude}, {});
+    std::vector<double> before;
+    const std::vector<glm::vec4> surface0 = readSurface(context(), terrain);
+    spacingAtPoints = 1e300;
+    for (const glm::dvec3& p : points) {
+      before.push_back(drawnHeight(terrain, surface0, p));
+      const double theta = planetToLocalThetaPhi(terrain.frame().orientation, p).x;
+      spacingAtPoints = std::min(spacingAtPoints, ringSpacingM(terrain.mesh().params, planet.radiusM,
+                                                               terrain.mesh().innermostRingAtOrAbove(theta)));
+    }
+    // Move the camera by 0.3 of the finest vertex spacing among the points, four ways.
+    worstChange = 0.0;
+    for (double bearing : {0.0, 90.0, 180.0, 270.0}) {
+      const glm::dvec3 moved = travelGreatCircle(ground, bearing, 0.3 * spacingAtPoints, planet.radiusM);
+      const double lat = std::asin(moved.z) * 180.0 / std::numbers::pi;
+      const double lon = std::atan2(moved.y, moved.x) * 180.0 / std::numbers::pi;
+      renderer.render({lat, lon, altitude}, {});
+      const std::vector<glm::vec4> surface = readSurface(context(), terrain);
+      for (size_t k = 0; k < points.size(); ++k)
+        worstChange = std::max(worstChange, std::abs(drawnHeight(terrain, surface, points[k]) - before[k]));
+    }
+  };
+  double limited = 0.0, unlimited = 0.0, spacing = 0.0;
+  measure(true, limited, spacing);
+  measure(false, unlimited, spacing);
+  std::printf(
+      "surface change at fixed points after camera moves of %.3f m: %.4f m with octave limits, %.4f m "
+      "without\n",
+      0.3 * spacing, limited, unlimited);
+  // The stated tolerance: 5 mm for moves of 0.3 of the vertex spacing (measured 2.1 mm; every
+  // octave everywhere, as without limits, swims five times as much: 10.8 mm).
+  EXPECT_LT(limited, 0.005);
+  EXPECT_LT(limited, 0.5 * unlimited);
+}
+
+TEST_F(TerrainRender, HeightsAreNotRecomputedWhenNothingMoved) {
+  const PlanetDescription planet = resolvePreset("moon");
+  Renderer renderer(context(), planet, smallSettings(true));
+  RenderResult first = renderer.render({-20.0, 40.0, 3000.0, 0.0, -30.0}, {90.0, 20.0});
+  EXPECT_TRUE(first.terrain.heightsComputed);
+  EXPECT_GT(first.terrain.verticesEvaluated, 1000u);
+  EXPECT_EQ(first.terrain.patchLevelsRebuilt, 4u);
+  RenderResult again = renderer.render({-20.0, 40.0, 3000.0, 0.0, -30.0}, {90.0, 20.0});
+  EXPECT_FALSE(again.terrain.heightsComputed);
+  EXPECT_EQ(again.terrain.verticesEvaluated, 0u);
+  EXPECT_EQ(again.terrain.patchLevelsRebuilt, 0u);
+  EXPECT_EQ(again.image.pixels, first.image.pixels);
+  // Turning the head moves nothing on the ground either.
+  RenderResult turned = renderer.render({-20.0, 40.0, 3000.0, 45.0, -30.0}, {90.0, 20.0});
+  EXPECT_FALSE(turned.terrain.heightsComputed);
+  EXPECT_NE(turned.image.pixels, first.image.pixels);
+  RenderResult moved = renderer.render({-20.0, 40.001, 3000.0, 0.0, -30.0}, {90.0, 20.0});
+  EXPECT_TRUE(moved.terrain.heightsComputed);
+}
+
+// Fraction of pixels brighter than black on a circle of radius r pixels about the centre.
+double litFraction(const Rgba8Image& image, double r) {
+  int lit = 0;
+  const int samples = 64;
+  for (int k = 0; k < samples; ++k) {
+    const double a = 2.0 * std::numbers::pi * (k + 0.5) / samples;
+    const int x = int(std::floor(image.width / 2.0 + r * std::cos(a)));
+    const int y = int(std::floor(image.height / 2.0 + r * std::sin(a)));
+    const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+    lit += (p[0] + p[1] + p[2]) > 6 ? 1 : 0;
+  }
+  return double(lit) / samples;
+}
+
+TEST_F(TerrainRender, LimbIsWhereTheGeometrySays) {
+  const PlanetDescription planet = resolvePreset("moon");  // no ocean: bright everywhere in daylight
+  RenderSettings settings = smallSettings(false);
+  settings.width = 200;
+  settings.height = 200;
+  Renderer renderer(context(), planet, settings);
+  for (double altitude : {2.0e6, 8.0e6}) {
+    RenderResult result = renderer.render({10.0, 20.0, altitude}, {0.0, 90.0});  // sun overhead
+    // Angular radius of the sphere seen from r + h, in pixels of a 60° field of view.
+    const double alpha = std::asin(planet.radiusM / (planet.radiusM + altitude));
+    const double limbPx = 100.0 * std::tan(alpha) / std::tan(std::numbers::pi / 6.0);
+    EXPECT_EQ(litFraction(result.image, limbPx - 3.0), 1.0) << altitude;
+    EXPECT_EQ(litFraction(result.image, limbPx + 3.0), 0.0) << altitude;
+  }
+}
+
+TEST_F(TerrainRender, SameInputsGiveIdenticalImagesAndSeedsChangeThePlanet) {
+  PlanetDescription planet = resolvePreset("earth");
+  const CameraPose camera{-5.0, 150.0, 4.0e5, 30.0, -45.0};
+  Rgba8Image first, second;
+  {
+    Renderer renderer(context(), planet, smallSettings(true));
+    first = renderer.render(camera, {}).image;
+  }
+  {
+    Renderer renderer(context(), planet, smallSettings(true));
+    second = renderer.render(camera, {}).image;
+  }
+  EXPECT_EQ(encodePng(first), encodePng(second));
+  for (NoiseLayer& layer : planet.layers) layer.noise.seed += 1;
+  Renderer renderer(context(), planet, smallSettings(true));
+  EXPECT_LT(psnrRgb(first, renderer.render(camera, {}).image), 30.0);
+}
+
+TEST_F(TerrainRender, TwoMetresAboveTheGroundVerticesAreDenserThanHalfAMetre) {
+  const PlanetDescription planet = resolvePreset("earth");
+  Renderer renderer(context(), planet, smallSettings(false));
+  RenderResult result = renderer.render({kLat, kLon, -100.0, 0.0, -20.0}, {});
+  EXPECT_TRUE(result.cameraRaised);
+  EXPECT_NEAR(result.terrain.heightAboveGroundM, kMinEyeHeightM, 0.05);
+  EXPECT_LT(result.terrain.metresPerVertexAtNadir, 0.5);
+  // The fan that closes the mesh under the camera is a few pixels wide (here 160x90 pixels).
+  const double pixelM = result.terrain.heightAboveGroundM * std::tan(std::numbers::pi / 6.0) / 45.0;
+  EXPECT_LT(result.terrain.poleCapRadiusM, 4.0 * pixelM);
+}
+
+// Golden images: lavapipe on Debian 12 renders these bit for bit today; the PSNR threshold
+// leaves room for rasteriser rounding in other Mesa versions. Regenerate with
+// PLANET_UPDATE_GOLDEN=1 after an intended change (and look at the pictures).
+TEST_F(TerrainRender, GoldenImages) {
+  const std::string golden = PLANET_GOLDEN_DIR;
+  const std::string out = std::filesystem::temp_directory_path() / "planet_golden_out";
+  std::filesystem::create_directories(out);
+  struct Case {
+    const char* name;
+    const char* preset;
+    CameraPose camera;
+    SunPose sun;
+  } cases[] = {
+      {"earth_orbit", "earth", {20.0, -30.0, 2.0e7, 0.0, -90.0}, {135.0, 35.0}},
+      {"earth_10km", "earth", {33.8, -90.0, 1.0e4, 0.0, -20.0}, {150.0, 35.0}},
+      {"moon_ground", "moon", {-20.0, 40.0, 2.0, 0.0, -15.0}, {100.0, 12.0}},
+  };
+  for (const Case& c : cases) {
+    RenderSettings settings = smallSettings(true);
+    settings.width = 192;
+    settings.height = 108;
+    Renderer renderer(context(), resolvePreset(c.preset), settings);
+    Rgba8Image image = renderer.render(c.camera, c.sun).image;
+    EXPECT_TRUE(matchesGolden(image, golden + "/" + c.name + ".png", 40.0, out, c.name));
+  }
+}
+
+}  // namespace
+}  // namespace planet::test

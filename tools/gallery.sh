@@ -1,0 +1,31 @@
+#!/bin/sh
+# Renders the README gallery into a folder (default docs/gallery):
+#   - seed 002's Figures 5.1-5.4 equivalents: one fBm, cascade, hybrid and ridged planet each,
+#     shaded by height only (tools/gallery/*.toml), from orbit and from 600 km;
+#   - a descent on the default planet: orbit -> 100 km -> 1 km -> 2 m, at noon and at a low sun;
+#   - the moon preset from orbit and from the ground.
+# Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
+set -eu
+out=${1:-docs/gallery}
+size=${2:-960x540}
+planet=${PLANET:-./build/release/apps/planet}
+[ -x "$planet" ] || { echo "gallery: $planet not found; build first (./tools/setup.sh)" >&2; exit 1; }
+mkdir -p "$out"
+render() {  # NAME ARGS...
+  name=$1; shift
+  echo "gallery: $out/$name.png"
+  "$planet" render --size "$size" --out "$out/$name.png" "$@" > /dev/null
+}
+for type in fbm cascade hybrid ridged; do
+  render "fig_$type" --preset "tools/gallery/$type.toml" --camera 25,-40,1.4e7 --sun 150,50
+  render "fig_${type}_600km" --preset "tools/gallery/$type.toml" --camera 25,-40,6e5,30,-35 --sun 150,30
+done
+# Descent over a coast of the default planet (earth): positions chosen from `planet height`.
+render descent_1_orbit --camera 30,-95,1.2e7 --sun 150,45
+render descent_2_100km --camera 33.8,-90,1e5,0,-30 --sun 150,35
+render descent_3_1km --camera 33.8,-90,3500,0,-12 --sun 150,35
+render descent_4_2m --camera 33.8,-90,0,60,-8 --sun 150,35
+render descent_5_2m_low_sun --camera 33.8,-90,0,60,-8 --sun 230,6
+render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
+render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
+echo "gallery: done ($out)"
