@@ -72,7 +72,9 @@ void main() {
   ivec2 local = ivec2(group + gl_LocalInvocationID.xy);
   ivec2 id = local - ivec2(level.shiftA, level.shiftB);
   int side = int(level.resolution) + 2;
-  if (id.x < 0 || id.y < 0 || id.x >= side || id.y >= side) return;
+  // No early return: lavapipe turns loads with uniform addresses into one scalar load only
+  // outside control flow, so the layer parameters below stay cheap; the store is guarded.
+  bool inside = id.x >= 0 && id.y >= 0 && id.x < side && id.y < side;
   uvec2 tileXY = group / level.tileSize;
   uint tile = tileXY.y * level.tilesPerSide + tileXY.x;
   int size = int(level.tileSize);
@@ -92,5 +94,5 @@ void main() {
   if (kSpecLayerCount > 5u) sum += layerHeight(5u, kSpecType5, kSpecHash5, offset);
   if (kSpecLayerCount > 6u) sum += layerHeight(6u, kSpecType6, kSpecHash6, offset);
   if (kSpecLayerCount > 7u) sum += layerHeight(7u, kSpecType7, kSpecHash7, offset);
-  heights[id.y * side + id.x] = level.heightScale * sum;
+  if (inside) heights[id.y * side + id.x] = level.heightScale * sum;
 }

@@ -110,6 +110,16 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"height --at 1,2 --preset nosuch", "", "unknown planet preset 'nosuch'"},
       {"height --at 1,2 --step-m -1", "", "--step-m must be in [0, 1e8], got -1"},
       {"height --at 1,2 --backend tpu", "", "unknown backend 'tpu'"},
+      {"render --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"render --size 100000x100000", "", "--size 100000x100000 is outside"},
+      {"render --size big", "", "--size expects WIDTHxHEIGHT in pixels, got 'big'"},
+      {"render --camera 95,0,100", "", "camera latitude 95 is outside [-90, 90] degrees"},
+      {"render --camera 1,2", "", "expected 3 or 5 numbers"},
+      {"render --camera 1,2,x", "", "'x' is not a finite number"},
+      {"render --sun 10,100", "", "sun elevation 100 is outside [-90, 90] degrees"},
+      {"render --fov 0", "", "--fov must be in (0, 179] degrees, got 0"},
+      {"render --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"render --seed 99999999999", "", "--seed must be in 0..4294967295"},
       {"frobnicate", "", "frobnicate"},
       {"", "", "a command is required"},
       {"bench", "", "a command is required"},
@@ -161,6 +171,32 @@ TEST(Cli, GpuBackendPrintsTheSameValuesAsTheCpuReference) {
   ASSERT_EQ(gpu.exitCode, 0) << gpu.err;
   EXPECT_EQ(lineCount(gpu.out), 500u);
   EXPECT_EQ(gpu.out, cpu.out) << "lavapipe must agree bit for bit";
+}
+
+TEST(Cli, RenderWritesAPngAndReportsTheFrame) {
+  const std::filesystem::path png = tempDir() / "moon.png";
+  CommandResult run = planet("render --preset moon --size 64x36 --camera -20,40,-5000,0,-15 --out " + png.string());
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string bytes = readFile(png);
+  ASSERT_GT(bytes.size(), 8u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_NE(run.out.find("wrote " + png.string() + " (64x36"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("metres per vertex at the nadir: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("triangles drawn: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("GPU time per pass: heights "), std::string::npos) << run.out;
+  // 5 km below the reference sphere is below any ground: raised to eye height, with a warning.
+  EXPECT_NE(run.err.find("warning: camera altitude -5000.00 m is below the ground"), std::string::npos) << run.err;
+}
+
+TEST(Cli, RenderToAMissingDirectoryFailsWithoutLeavingFiles) {
+  const std::filesystem::path dir = tempDir() / "no_such_dir";
+  CommandResult run = planet("render --size 32x18 --out " + (dir / "x.png").string());
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(lineCount(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find((dir / "x.png").string()), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
 TEST(Cli, ValidatePassesAndWritesJson) {

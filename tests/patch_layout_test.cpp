@@ -198,6 +198,7 @@ TEST(PatchLayout, SmallCameraMovesKeepOriginsAndOneStepMovesTheFinestLevelOneSte
   Random random(23);
   const PatchSettings settings;
   const int64_t step = settings.resolution / settings.recentreDivisor;
+  int movesChecked = 0, stepsChecked = 0;
   for (int i = 0; i < 300; ++i) {
     const glm::dvec3 camera = random.direction();
     const PatchLayout layout = choosePatchLayout(settings, kEarthRadiusM, camera, 0.3);
@@ -221,6 +222,7 @@ TEST(PatchLayout, SmallCameraMovesKeepOriginsAndOneStepMovesTheFinestLevelOneSte
       const PatchLayout moved =
           choosePatchLayout(settings, kEarthRadiusM, cubeFaceDirection(layout.face, ab.x + da, ab.y + db), 0.3);
       ASSERT_EQ(moved.face, layout.face);
+      ++movesChecked;
       for (size_t j = 0; j < layout.levels.size(); ++j) {
         if (moved.levels[j].exponent != layout.levels[j].exponent) continue;  // pixel size crossed a power of 2
         EXPECT_EQ(moved.levels[j].originA, layout.levels[j].originA) << i << " level " << j;
@@ -238,7 +240,11 @@ TEST(PatchLayout, SmallCameraMovesKeepOriginsAndOneStepMovesTheFinestLevelOneSte
     if (after.face != before.face || after.levels[0].exponent != before.levels[0].exponent) continue;
     EXPECT_EQ(after.levels[0].originA, before.levels[0].originA + step) << i;
     EXPECT_EQ(after.levels[0].originB, before.levels[0].originB) << i;
+    ++stepsChecked;
   }
+  // Nearly every random camera had room to move and stayed on its face.
+  EXPECT_GE(movesChecked, 4 * 280);
+  EXPECT_GE(stepsChecked, 250);
 }
 
 TEST(PatchLayout, TexelCoordinatesAndSpacing) {
