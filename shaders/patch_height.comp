@@ -66,8 +66,8 @@ float layerHeight(uint l, uint type, uint hash, vec3 offset) {
 }
 
 void main() {
-  // Local texel of this invocation; its tile follows from the workgroup alone (tiles are whole
-  // workgroups), so the compiler sees the table reads as uniform.
+  // Local texel of this invocation. Tiles are whole workgroups, so the tile follows from the
+  // workgroup alone and every invocation, also one outside the level, reads a filled tile.
   uvec2 group = (gl_WorkGroupID.xy + uvec2(level.firstGroupA, level.firstGroupB)) * kPatchWorkgroupSize;
   ivec2 local = ivec2(group + gl_LocalInvocationID.xy);
   ivec2 id = local - ivec2(level.shiftA, level.shiftB);

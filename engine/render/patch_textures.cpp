@@ -79,6 +79,7 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
                context_.info.name);
 
   const uint32_t res = settings_.resolution;
+  // Tiles are whole workgroups: the height pass takes a workgroup's tile from its id.
   const uint32_t group = gpu::kPatchWorkgroupSize;
   tileSize_ = group * std::max(1u, res / (gpu::kPatchTileDivisor * group));
   // Height-buffer columns 0..res+1 start anywhere in a tile: at most this many tiles per side.

@@ -38,7 +38,7 @@ class PlanetGpuData;
 class PatchTextures {
  public:
   // The image format: 32-bit float, because heights of thousands of metres must keep
-  // millimetres (a half float keeps 2 m at 4 km).
+  // millimetres (a half float steps by 2 m between 2 and 4 km).
   static constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
   // Validates `settings` (validatePatchSettings) and that the device can store to and sample the

@@ -28,7 +28,7 @@ GPU_CONST uint kPatchWorkgroupSize = 8u;  // 8 × 8 invocations per workgroup, b
 // Tiles are about resolution / kPatchTileDivisor texels wide, rounded down to a multiple of the
 // workgroup size (at least one workgroup): about 10 × 10 tiles per level (cheap tables), offsets
 // of at most ~45 texels from an anchor at the default 512, and every height-pass workgroup lies
-// in one tile, so its table reads are uniform (one load each, not one per invocation).
+// in one tile.
 GPU_CONST uint kPatchTileDivisor = 8u;
 
 // Specialization constants of patch_height.comp: the planet's layer count and each layer's
