@@ -88,32 +88,4 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
   return pipeline;
 }
 
-VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
-                                      VkShaderStageFlags pushStages) {
-  VkPushConstantRange range{pushStages, 0, pushConstantSize};
-  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  info.setLayoutCount = setLayout ? 1 : 0;
-  info.pSetLayouts = &setLayout;
-  info.pushConstantRangeCount = pushConstantSize ? 1 : 0;
-  info.pPushConstantRanges = &range;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreatePipelineLayout(context.device, &info, nullptr, &layout));
-  return layout;
-}
-
-VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout) {
-  VkShaderModule module = createShaderModule(context, spirv);
-  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  info.stage.module = module;
-  info.stage.pName = "main";
-  info.layout = layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-  vkDestroyShaderModule(context.device, module, nullptr);
-  VK_CHECK(result);
-  return pipeline;
-}
-
 }  // namespace planet::vk

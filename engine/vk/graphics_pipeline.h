@@ -30,12 +30,4 @@ struct GraphicsPipelineDesc {
 
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);
 
-// A pipeline layout over one descriptor set layout plus a push-constant range for `stages`.
-VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
-                                      VkShaderStageFlags pushStages);
-
-// A compute pipeline over an existing layout (passes that share one set between compute and
-// graphics shaders).
-VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout);
-
 }  // namespace planet::vk

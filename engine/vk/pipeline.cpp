@@ -55,6 +55,40 @@ VkDescriptorPool createDescriptorPool(Context& context, std::span<const VkDescri
   return pool;
 }
 
+VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
+                                      VkShaderStageFlags pushStages) {
+  VkPushConstantRange range{pushStages, 0, pushConstantSize};
+  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  info.setLayoutCount = setLayout ? 1 : 0;
+  info.pSetLayouts = &setLayout;
+  info.pushConstantRangeCount = pushConstantSize ? 1 : 0;
+  info.pPushConstantRanges = &range;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreatePipelineLayout(context.device, &info, nullptr, &layout));
+  return layout;
+}
+
+VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
+                                           std::span<const uint32_t> specialization) {
+  std::vector<VkSpecializationMapEntry> entries(specialization.size());
+  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)};
+  VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
+                                specialization.data()};
+  VkShaderModule module = createShaderModule(context, spirv);
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specInfo;
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult created = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  vkDestroyShaderModule(context.device, module, nullptr);
+  VK_CHECK(created);
+  return pipeline;
+}
+
 ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv,
                                       std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
                                       std::span<const uint32_t> specialization, uint32_t maxSets) {
@@ -62,32 +96,8 @@ ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t
   result.pushConstantSize = pushConstantSize;
   try {
     result.setLayout = createSetLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT);
-
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantSize};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &result.setLayout;
-    layoutInfo.pushConstantRangeCount = pushConstantSize ? 1 : 0;
-    layoutInfo.pPushConstantRanges = &range;
-    VK_CHECK(vkCreatePipelineLayout(context.device, &layoutInfo, nullptr, &result.layout));
-
-    std::vector<VkSpecializationMapEntry> entries(specialization.size());
-    for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)};
-    VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
-                                  specialization.data()};
-
-    VkShaderModule module = createShaderModule(context, spirv);
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &specInfo;
-    info.layout = result.layout;
-    VkResult created = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &result.pipeline);
-    vkDestroyShaderModule(context.device, module, nullptr);
-    VK_CHECK(created);
-
+    result.layout = createPipelineLayout(context, result.setLayout, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
+    result.pipeline = createComputePipelineWithLayout(context, spirv, result.layout, specialization);
     result.descriptorPool = createDescriptorPool(context, bindings, maxSets);
   } catch (...) {
     destroyComputePipeline(context, result);

@@ -36,6 +36,16 @@ ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t
                                       std::span<const uint32_t> specialization = {}, uint32_t maxSets = 4);
 void destroyComputePipeline(Context& context, ComputePipeline& pipeline);
 
+// A pipeline layout over one descriptor set layout (or none) plus a push-constant range of
+// `pushConstantSize` bytes (none when 0) for `pushStages`.
+VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
+                                      VkShaderStageFlags pushStages);
+// A compute pipeline over an existing layout; `specialization[i]` is the uint specialization
+// constant with constant_id i. Passes that share one set between compute and graphics shaders
+// use this directly.
+VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
+                                           std::span<const uint32_t> specialization = {});
+
 // A descriptor set layout with bindings[i] at binding i, visible to `stages`, and a pool for
 // `maxSets` such sets (graphics passes use these; compute pipelines make their own).
 VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescriptorType> bindings,
