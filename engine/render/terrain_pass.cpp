@@ -57,12 +57,14 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     : context_(context), planet_(planet), settings_(settings) {
   if (settings.subPixelRings == 0 || settings.subPixelRings > 64)
     throw Error(fmt::format("sub-pixel ring factor {} is outside 1..64", settings.subPixelRings));
+  // Wireframe draws edges only, so patch textures would be built for nothing.
+  if (settings_.wireframe) settings_.patches = false;
   mesh_ = buildClipmapMesh(settings.mesh);
   maxTerrainHeightM_ = estimateMaxTerrainHeightM(planet);
   try {
     data_ = std::make_unique<PlanetGpuData>(context, planet);
     PatchSettings patchSettings = settings.patchSettings;
-    if (!settings.patches) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
+    if (!settings_.patches) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
     patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
