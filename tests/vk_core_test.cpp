@@ -1,5 +1,6 @@
 // The Vulkan core on a real device (lavapipe in CI): device choice, upload/readback of
 // buffers and images, timestamps, and the validation messenger itself.
+#include <algorithm>
 #include <numeric>
 #include <random>
 
@@ -80,8 +81,12 @@ TEST_F(VkCore, TimestampsMeasureGpuWork) {
   // Lavapipe compiles a pipeline's machine code on its first dispatch: warm both up first.
   gpu.dispatch(few);
   gpu.dispatch(many);
-  double fewMs = gpu.dispatch(few);
-  double manyMs = gpu.dispatch(many);
+  // The fastest of three runs each: a busy 2-core machine can stall any single dispatch.
+  double fewMs = 1e300, manyMs = 1e300;
+  for (int run = 0; run < 3; ++run) {
+    fewMs = std::min(fewMs, gpu.dispatch(few));
+    manyMs = std::min(manyMs, gpu.dispatch(many));
+  }
   EXPECT_GT(fewMs, 0.0);
   EXPECT_LT(manyMs, 60000.0);
   // 32 octaves cost clearly more than 1 (any correct timer sees it; a constant one does not).
