@@ -3,12 +3,13 @@
 // patch textures where they reach (finest level first, blended across level edges), else the
 // vertex normal; colour by altitude, slope, latitude and a noise perturbation of the band
 // edges (seed 000 "Earth-like" and "altitude + noise" schemes, seed 001's altitude colour
-// map); sun diffuse plus ambient.
+// map); sunlight through the atmosphere (transmittance table) plus sky light, as HDR radiance.
+// Ground below sea level is the sea floor; the water pass draws the sea over it.
 #extension GL_GOOGLE_include_directive : require
 
 #include "terrain_common.glsl"
 
-layout(set = 0, binding = kRenderBindingPatches) uniform sampler2DArray patches;
+#include "terrain_surface.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
@@ -22,42 +23,6 @@ const uint kSchemeEarth = 0u;
 const uint kSchemeAltitude = 1u;
 const uint kSchemeMoon = 2u;
 const uint kSchemeMars = 3u;
-
-// Normal (local frame) and height at this pixel from the patch levels, chosen like a mip level:
-// lod = log2(pixel footprint / finest texel), so detail changes continuously across the screen
-// (no rectangles where one level ends). Level floor(lod) and the next are blended by the
-// fraction; a level that does not cover the pixel (or is within its outer tenth) hands its
-// weight on to coarser ones, and beyond the coarsest the vertex values remain.
-void surfaceDetail(out vec3 normal, out float height) {
-  vec3 accumulatedNormal = vec3(0.0f);
-  float accumulatedHeight = 0.0f;
-  float remaining = 1.0f;
-  uint levels = uint(frame.refMinusNadir.w);
-  vec2 face = inAttributes.xy;
-  // Face units per pixel (derivatives taken in uniform control flow, before any branch).
-  float footprint = max(length(dFdx(face)), length(dFdy(face)));
-  if (levels > 0u) {
-    vec4 finest = frame.patchLevels[0];
-    float resolution = float(textureSize(patches, 0).x);
-    float lod = clamp(log2(max(footprint * finest.y * resolution, 1e-30f)), 0.0f, float(levels - 1u));
-    uint first = uint(lod);
-    float fraction = lod - float(first);
-    for (uint j = first; j < levels && remaining > 0.0f; ++j) {
-      vec4 level = frame.patchLevels[j];
-      vec2 uv = (face + level.zw) * level.y;
-      float edge = min(min(uv.x, 1.0f - uv.x), min(uv.y, 1.0f - uv.y));
-      float weight = clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
-      if (j == first) weight *= 1.0f - fraction;
-      if (weight <= 0.0f) continue;
-      vec4 texel = textureLod(patches, vec3(uv, level.x), 0.0f);
-      accumulatedNormal += remaining * weight * (mat3(frame.planetToLocal) * texel.xyz);
-      accumulatedHeight += remaining * weight * texel.w;
-      remaining *= 1.0f - weight;
-    }
-  }
-  normal = normalize(accumulatedNormal + remaining * normalize(inNormal));
-  height = accumulatedHeight + remaining * inHeight;
-}
 
 vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter) {
   uint scheme = uint(frame.shading.y);
@@ -89,42 +54,35 @@ vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter) {
 
 void main() {
   if (frame.shading.z > 0.5f) {  // wireframe debug view
-    outColor = vec4(0.2f, 1.0f, 0.4f, 1.0f);
+    outColor = vec4(0.05f, 0.25f, 0.08f, 1.0f);
     return;
   }
   vec3 normal;
   float height;
-  surfaceDetail(normal, height);
+  surfaceDetail(inAttributes.xy, inNormal, inHeight, normal, height);
   vec3 up = normalize(inUp);
   float jitter = inAttributes.z;
   float seaLevel = frame.planet.x;
   bool ocean = frame.planet.y > 0.5f;
   vec3 sun = frame.sunLocal.xyz;
   vec3 albedo;
-  bool water = ocean && height < seaLevel;
-  if (water) {
+  if (ocean && height < seaLevel) {
+    // Sea floor: sand near the coast, darker mud deeper down (the water pass tints it).
     float depth = seaLevel - height;
-    albedo = mix(frame.colorShallowWater.rgb, frame.colorDeepWater.rgb, smoothstep(0.0f, 200.0f, depth));
-    float iceCap = frame.shading.x;
-    float lat = abs(inAttributes.w) + 0.04f * jitter;
-    float ice = smoothstep(iceCap + 0.02f, iceCap + 0.04f, lat);  // sea ice a little poleward of the land caps
-    albedo = mix(albedo, frame.colorSnow.rgb, ice);
-    normal = up;
+    albedo = mix(frame.colorBeach.rgb, 0.4f * frame.colorLowland.rgb + 0.3f * frame.colorBeach.rgb,
+                 smoothstep(0.0f, 60.0f, depth));
+    if (frame.water.z < 0.5f) {  // no water pass (debug): show the sea as its colour
+      albedo = mix(frame.colorShallowWater.rgb, frame.colorDeepWater.rgb, smoothstep(0.0f, 200.0f, depth));
+      normal = up;
+    }
   } else {
     float slope = 1.0f - max(dot(normal, up), 0.0f);
     albedo = groundColor(height - seaLevel, slope, inAttributes.w, jitter);
   }
-  // Night side: the sphere's own shadow, softened over a few tenths of a degree of sun angle.
-  float daylight = smoothstep(-0.02f, 0.02f, dot(up, sun));
-  float diffuse = max(dot(normal, sun), 0.0f) * daylight;
-  // Ambient sky light, more on ground that faces the sky (no light on the night side beyond it).
-  float sky = frame.shading.w * (0.6f + 0.4f * dot(normal, up)) * (0.3f + 0.7f * daylight);
-  vec3 light = albedo * (frame.sunLocal.w * diffuse + sky);
-  if (water) {
-    // A small sun glint (Blinn-Phong) until the water pass brings Fresnel and sky reflection.
-    vec3 toCamera = normalize(inToCamera);
-    float glint = pow(max(dot(normal, normalize(sun + toCamera)), 0.0f), 300.0f);
-    light += vec3(0.6f) * glint * daylight;
-  }
-  outColor = vec4(light, 1.0f);
+  vec3 sunLight = sunIrradianceAt(height, up);
+  float muS = dot(up, sun);
+  // Sky light, more on ground that faces the sky; airless bodies get a faint fill instead.
+  vec3 skyLight = (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));
+  vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight);
+  outColor = vec4(radiance, 1.0f);
 }

@@ -184,7 +184,8 @@ TEST(Cli, RenderWritesAPngAndReportsTheFrame) {
   EXPECT_NE(run.out.find("wrote " + png.string() + " (64x36"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("metres per vertex at the nadir: "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("triangles drawn: "), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("GPU time per pass: heights "), std::string::npos) << run.out;
+  for (const char* pass : {"GPU time per pass: sky tables ", " heights ", " terrain ", " sky ", " tonemap "})
+    EXPECT_NE(run.out.find(pass), std::string::npos) << pass << "\n" << run.out;
   // 5 km below the reference sphere is below any ground: raised to eye height, with a warning.
   EXPECT_NE(run.err.find("warning: camera altitude -5000.00 m is below the ground"), std::string::npos) << run.err;
 }

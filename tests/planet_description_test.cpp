@@ -178,11 +178,66 @@ TEST(PlanetDescription, UnknownKeysAndTablesNameTheKeyAndLine) {
   EXPECT_EQ(parseError(edit("radius_m", "radus_m"), "earth.toml"), "earth.toml:4: unknown key 'radus_m' in [planet]");
   EXPECT_EQ(parseError(edit("octaves = 4", "octave = 4")), "x.toml:13: unknown key 'octave' in [[layer]]");
   EXPECT_EQ(parseError(edit("scheme", "schema")), "x.toml:8: unknown key 'schema' in [colors]");
-  EXPECT_EQ(parseError(std::string(kMinimal) + "[atmosphere]\nheight_m = 1\n"),
-            "x.toml:16: unknown table [atmosphere]");
+  EXPECT_EQ(parseError(std::string(kMinimal) + "[atmospere]\nheight_m = 1\n"), "x.toml:16: unknown table [atmospere]");
+  EXPECT_EQ(parseError(std::string(kMinimal) + "[atmosphere]\nheigth_m = 1\n"),
+            "x.toml:17: unknown key 'heigth_m' in [atmosphere]");
   EXPECT_EQ(parseError("seed = 1\n" + std::string(kMinimal)), "x.toml:1: unknown key 'seed' at top level");
   EXPECT_EQ(parseError(edit("[colors]", "[planet.extra]\nx = 1\n[colors]")),
             "x.toml:7: unknown key 'extra' in [planet]");
+}
+
+// The sky tables (issue 4): optional, each switches its effect on, with checked values.
+TEST(PlanetDescription, SkyTablesAreOptionalAndChecked) {
+  const PlanetDescription plain = parsePlanetDescription(kMinimal, "x.toml");
+  EXPECT_FALSE(plain.atmosphere.enabled);
+  EXPECT_FALSE(plain.clouds.enabled);
+  EXPECT_TRUE(plain.stars.enabled);
+
+  const PlanetDescription sky = parsePlanetDescription(
+      std::string(kMinimal) +
+          "[atmosphere]\nrayleigh_scattering = 1e-5\nmie_scattering = [1e-6, 2e-6, 3e-6]\nmie_g = 0.5\n"
+          "[clouds]\ncoverage = 0.7\ntop_m = 9000\n[stars]\nseed = 9\nenabled = false\n",
+      "x.toml");
+  EXPECT_TRUE(sky.atmosphere.enabled);
+  EXPECT_EQ(sky.atmosphere.rayleighScattering, glm::dvec3(1e-5));
+  EXPECT_EQ(sky.atmosphere.mieScattering, glm::dvec3(1e-6, 2e-6, 3e-6));
+  EXPECT_EQ(sky.atmosphere.mieG, 0.5);
+  EXPECT_TRUE(sky.clouds.enabled);
+  EXPECT_EQ(sky.clouds.coverage, 0.7);
+  EXPECT_EQ(sky.clouds.topM, 9000.0);
+  EXPECT_EQ(sky.stars.seed, 9u);
+  EXPECT_FALSE(sky.stars.enabled);
+  EXPECT_NE(descriptionHash(plain), descriptionHash(sky));
+
+  const std::string base(kMinimal);
+  EXPECT_EQ(parseError(base + "[clouds]\ncoverage = 0.5\n"), "x.toml:16: [clouds] needs an [atmosphere] table");
+  EXPECT_EQ(parseError(base + "[atmosphere]\nmie_g = 1.5\n"), "x.toml:17: mie_g must be in [-0.99, 0.99], got 1.5");
+  EXPECT_EQ(parseError(base + "[atmosphere]\nmie_scattering = [1e-6, 2e-6]\n"),
+            "x.toml:17: 'mie_scattering' must be a number or an array of 3 numbers [r, g, b], got 2 elements");
+  EXPECT_EQ(parseError(base + "[atmosphere]\nrayleigh_scattering = [1e-6, -1, 0]\n"),
+            "x.toml:17: rayleigh_scattering[1] must be in [0, 0.01], got -1");
+  EXPECT_EQ(parseError(base + "[atmosphere]\n[clouds]\nbottom_m = 5000\ntop_m = 4000\n"),
+            "x.toml:19: top_m (4000) must be above bottom_m (5000)");
+  EXPECT_EQ(parseError(base + "[atmosphere]\nheight_m = 5000\n[clouds]\n"),
+            "x.toml:18: clouds top_m (8000) must be below the atmosphere's height_m (5000)");
+  EXPECT_EQ(parseError(base + "[water]\nclarity_m = 5\n"), "x.toml:16: [water] needs has_ocean = true");
+  EXPECT_EQ(parseError(base + "[stars]\nfaintest_magnitude = nan\n"),
+            "x.toml:17: faintest_magnitude must be a finite number, got nan");
+  EXPECT_EQ(parseError("atmosphere = 3\n" + base), "x.toml:1: 'atmosphere' must be a table, got integer");
+}
+
+// The built-in presets differ where the issue asks: Earth has air, clouds and sea; Mars thin
+// dusty air; the Moon none of it.
+TEST(PlanetDescription, PresetSkiesDiffer) {
+  const PlanetDescription earth = resolvePreset("earth");
+  const PlanetDescription mars = resolvePreset("mars");
+  const PlanetDescription moon = resolvePreset("moon");
+  EXPECT_TRUE(earth.atmosphere.enabled && earth.clouds.enabled && earth.hasOcean);
+  EXPECT_TRUE(mars.atmosphere.enabled);
+  EXPECT_FALSE(mars.clouds.enabled || mars.hasOcean);
+  EXPECT_GT(mars.atmosphere.mieScattering.r, mars.atmosphere.mieScattering.b);  // reddish dust
+  EXPECT_FALSE(moon.atmosphere.enabled || moon.clouds.enabled || moon.hasOcean);
+  EXPECT_TRUE(moon.stars.enabled);
 }
 
 TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {

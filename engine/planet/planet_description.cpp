@@ -18,7 +18,15 @@
 namespace planet {
 namespace {
 
-constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer"};
+constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer", "atmosphere", "clouds", "water", "stars"};
+constexpr std::string_view kAtmosphereKeys[] = {"height_m",       "rayleigh_scattering",  "rayleigh_scale_height_m",
+                                                "mie_scattering", "mie_extinction_ratio", "mie_scale_height_m",
+                                                "mie_g",          "ozone_absorption",     "ozone_center_m",
+                                                "ozone_width_m"};
+constexpr std::string_view kCloudKeys[] = {"bottom_m", "top_m", "coverage", "sharpness",       "wavelength_m",
+                                           "octaves",  "seed",  "wind_mps", "evolve_period_s", "opacity"};
+constexpr std::string_view kWaterKeys[] = {"clarity_m", "wave_wavelength_m", "wave_slope"};
+constexpr std::string_view kStarKeys[] = {"enabled", "seed", "faintest_magnitude", "brightness"};
 constexpr std::string_view kPlanetKeys[] = {"name",        "radius_m",     "has_ocean",
                                             "sea_level_m", "height_scale", "base_height_m"};
 constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m", "snow_line_m", "ice_cap_latitude_deg",
@@ -216,30 +224,41 @@ class TableReader {
     return value;
   }
 
-  // [r, g, b], linear, each in kColorComponentRange.
-  std::optional<glm::vec3> color(std::string_view key) const {
+  // [x, y, z], each in `range`; a single number stands for all three when `allowScalar`.
+  std::optional<glm::dvec3> vector3(std::string_view key, Range range, bool allowScalar = false) const {
     const toml::node* node = find(key);
     if (!node) return std::nullopt;
-    const toml::array* array = node->as_array();
-    if (!array || array->size() != 3)
-      context_.fail(lineOf(*node), fmt::format("'{}' must be an array of 3 numbers [r, g, b], got {}", key,
-                                               array ? fmt::format("{} elements", array->size()) : typeName(*node)));
-    glm::vec3 color;
-    for (int i = 0; i < 3; ++i) {
-      const toml::node& element = *array->get(size_t(i));
+    auto component = [&](const toml::node& element, const std::string& label) {
       double value;
       if (auto integer = element.as_integer())
         value = double(integer->get());
       else if (auto floating = element.as_floating_point())
         value = floating->get();
       else
-        context_.fail(lineOf(element), fmt::format("{}[{}] must be a number, got {}", key, i, typeName(element)));
-      if (!(value >= kColorComponentRange.min && value <= kColorComponentRange.max))
-        context_.fail(lineOf(element), fmt::format("{}[{}] must be in {}, got {}", key, i,
-                                                   formatRange(kColorComponentRange), formatNumber(value)));
-      color[i] = float(value);
+        context_.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
+      if (!(value >= range.min && value <= range.max))
+        context_.fail(lineOf(element),
+                      fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
+      return value;
+    };
+    if (allowScalar && (node->is_integer() || node->is_floating_point())) {
+      double value = component(*node, std::string(key));
+      return glm::dvec3(value);
     }
-    return color;
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 3)
+      context_.fail(lineOf(*node), fmt::format("'{}' must be {}an array of 3 numbers [r, g, b], got {}", key,
+                                               allowScalar ? "a number or " : "",
+                                               array ? fmt::format("{} elements", array->size()) : typeName(*node)));
+    glm::dvec3 result;
+    for (int i = 0; i < 3; ++i) result[i] = component(*array->get(size_t(i)), fmt::format("{}[{}]", key, i));
+    return result;
+  }
+
+  // [r, g, b], linear, each in kColorComponentRange.
+  std::optional<glm::vec3> color(std::string_view key) const {
+    if (auto value = vector3(key, kColorComponentRange)) return glm::vec3(*value);
+    return std::nullopt;
   }
 
  private:
@@ -291,6 +310,75 @@ PlanetColors readColors(const Context& context, const toml::table& table) {
   for (const ColorKey& c : colorKeys)
     if (auto value = reader.color(c.key)) colors.*c.member = *value;
   return colors;
+}
+
+// An optional table: nullptr when absent, an error when the key holds something else.
+const toml::table* optionalTable(const Context& context, const toml::table& root, std::string_view key) {
+  const toml::node* node = root.get(key);
+  if (!node) return nullptr;
+  if (!node->is_table()) context.fail(lineOf(*node), fmt::format("'{}' must be a table, got {}", key, typeName(*node)));
+  return node->as_table();
+}
+
+AtmosphereDescription readAtmosphere(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[atmosphere]", kAtmosphereKeys);
+  AtmosphereDescription a;
+  a.enabled = true;
+  a.heightM = reader.number("height_m", kAtmosphereHeightRangeM).value_or(a.heightM);
+  a.rayleighScattering = reader.vector3("rayleigh_scattering", kScatteringRange, true).value_or(a.rayleighScattering);
+  a.rayleighScaleHeightM =
+      reader.number("rayleigh_scale_height_m", kScaleHeightRangeM).value_or(a.rayleighScaleHeightM);
+  a.mieScattering = reader.vector3("mie_scattering", kScatteringRange, true).value_or(a.mieScattering);
+  a.mieExtinctionRatio = reader.number("mie_extinction_ratio", kMieExtinctionRatioRange).value_or(a.mieExtinctionRatio);
+  a.mieScaleHeightM = reader.number("mie_scale_height_m", kScaleHeightRangeM).value_or(a.mieScaleHeightM);
+  a.mieG = reader.number("mie_g", kMieGRange).value_or(a.mieG);
+  a.ozoneAbsorption = reader.vector3("ozone_absorption", kScatteringRange, true).value_or(a.ozoneAbsorption);
+  a.ozoneCenterM = reader.number("ozone_center_m", kOzoneAltitudeRangeM).value_or(a.ozoneCenterM);
+  a.ozoneWidthM = reader.number("ozone_width_m", kOzoneAltitudeRangeM).value_or(a.ozoneWidthM);
+  if (a.ozoneWidthM <= 0.0 && a.ozoneAbsorption != glm::dvec3(0.0))
+    context.fail(lineOf(*reader.find("ozone_width_m")), "ozone_width_m must be above 0 when ozone_absorption is set");
+  return a;
+}
+
+CloudDescription readClouds(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[clouds]", kCloudKeys);
+  CloudDescription c;
+  c.enabled = true;
+  c.bottomM = reader.number("bottom_m", kCloudAltitudeRangeM).value_or(c.bottomM);
+  c.topM = reader.number("top_m", kCloudAltitudeRangeM).value_or(c.topM);
+  if (!(c.topM > c.bottomM)) {
+    const toml::node* node = reader.find("top_m") ? reader.find("top_m") : reader.find("bottom_m");
+    context.fail(node ? lineOf(*node) : reader.line(),
+                 fmt::format("top_m ({}) must be above bottom_m ({})", formatNumber(c.topM), formatNumber(c.bottomM)));
+  }
+  c.coverage = reader.number("coverage", kUnitRange).value_or(c.coverage);
+  c.sharpness = reader.number("sharpness", kSharpnessRange).value_or(c.sharpness);
+  c.wavelengthM = reader.number("wavelength_m", kCloudWavelengthRangeM).value_or(c.wavelengthM);
+  c.octaves = int(reader.integer("octaves", kCloudOctavesRange).value_or(c.octaves));
+  c.seed = uint32_t(reader.integer("seed", kSeedRange).value_or(c.seed));
+  c.windMps = reader.number("wind_mps", kWindRangeMps).value_or(c.windMps);
+  c.evolvePeriodS = reader.number("evolve_period_s", kEvolvePeriodRangeS).value_or(c.evolvePeriodS);
+  c.opacity = reader.number("opacity", kCloudOpacityRange).value_or(c.opacity);
+  return c;
+}
+
+WaterDescription readWater(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[water]", kWaterKeys);
+  WaterDescription w;
+  w.clarityM = reader.number("clarity_m", kClarityRangeM).value_or(w.clarityM);
+  w.waveWavelengthM = reader.number("wave_wavelength_m", kWaveWavelengthRangeM).value_or(w.waveWavelengthM);
+  w.waveSlope = reader.number("wave_slope", kWaveSlopeRange).value_or(w.waveSlope);
+  return w;
+}
+
+StarDescription readStars(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[stars]", kStarKeys);
+  StarDescription s;
+  s.enabled = reader.boolean("enabled").value_or(s.enabled);
+  s.seed = uint32_t(reader.integer("seed", kSeedRange).value_or(s.seed));
+  s.faintestMagnitude = reader.number("faintest_magnitude", kMagnitudeRange).value_or(s.faintestMagnitude);
+  s.brightness = reader.number("brightness", kStarBrightnessRange).value_or(s.brightness);
+  return s;
 }
 
 NoiseLayer readLayer(const Context& context, const toml::table& table) {
@@ -448,6 +536,20 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
   d.baseHeightM = planet.number("base_height_m", kBaseHeightRangeM).value_or(0.0);
   d.colors = readColors(context, requireTable(context, root, "colors"));
   d.layers = readLayers(context, root);
+  if (const toml::table* table = optionalTable(context, root, "atmosphere"))
+    d.atmosphere = readAtmosphere(context, *table);
+  if (const toml::table* table = optionalTable(context, root, "clouds")) {
+    if (!d.atmosphere.enabled) context.fail(lineOf(*table), "[clouds] needs an [atmosphere] table");
+    d.clouds = readClouds(context, *table);
+    if (d.clouds.topM > d.atmosphere.heightM)
+      context.fail(lineOf(*table), fmt::format("clouds top_m ({}) must be below the atmosphere's height_m ({})",
+                                               formatNumber(d.clouds.topM), formatNumber(d.atmosphere.heightM)));
+  }
+  if (const toml::table* table = optionalTable(context, root, "water")) {
+    if (!d.hasOcean) context.fail(lineOf(*table), "[water] needs has_ocean = true");
+    d.water = readWater(context, *table);
+  }
+  if (const toml::table* table = optionalTable(context, root, "stars")) d.stars = readStars(context, *table);
   return d;
 }
 
@@ -495,6 +597,31 @@ std::string canonicalForm(const PlanetDescription& d) {
   out += fmt::format("deep_water={}\nshallow_water={}\nbeach={}\nlowland={}\nhighland={}\ncliff={}\nsnow={}\n",
                      color(c.deepWater), color(c.shallowWater), color(c.beach), color(c.lowland), color(c.highland),
                      color(c.cliff), color(c.snow));
+  auto vector = [](const glm::dvec3& v) {
+    return fmt::format("{},{},{}", formatNumber(v.x), formatNumber(v.y), formatNumber(v.z));
+  };
+  const AtmosphereDescription& a = d.atmosphere;
+  out += fmt::format(
+      "atmosphere={}\natmosphere.height_m={}\natmosphere.rayleigh_scattering={}\n"
+      "atmosphere.rayleigh_scale_height_m={}\natmosphere.mie_scattering={}\natmosphere.mie_extinction_ratio={}\n"
+      "atmosphere.mie_scale_height_m={}\natmosphere.mie_g={}\natmosphere.ozone_absorption={}\n"
+      "atmosphere.ozone_center_m={}\natmosphere.ozone_width_m={}\n",
+      a.enabled, formatNumber(a.heightM), vector(a.rayleighScattering), formatNumber(a.rayleighScaleHeightM),
+      vector(a.mieScattering), formatNumber(a.mieExtinctionRatio), formatNumber(a.mieScaleHeightM),
+      formatNumber(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM), formatNumber(a.ozoneWidthM));
+  const CloudDescription& cl = d.clouds;
+  out += fmt::format(
+      "clouds={}\nclouds.bottom_m={}\nclouds.top_m={}\nclouds.coverage={}\nclouds.sharpness={}\n"
+      "clouds.wavelength_m={}\nclouds.octaves={}\nclouds.seed={}\nclouds.wind_mps={}\nclouds.evolve_period_s={}\n"
+      "clouds.opacity={}\n",
+      cl.enabled, formatNumber(cl.bottomM), formatNumber(cl.topM), formatNumber(cl.coverage),
+      formatNumber(cl.sharpness), formatNumber(cl.wavelengthM), cl.octaves, cl.seed, formatNumber(cl.windMps),
+      formatNumber(cl.evolvePeriodS), formatNumber(cl.opacity));
+  out += fmt::format("water.clarity_m={}\nwater.wave_wavelength_m={}\nwater.wave_slope={}\n",
+                     formatNumber(d.water.clarityM), formatNumber(d.water.waveWavelengthM),
+                     formatNumber(d.water.waveSlope));
+  out += fmt::format("stars={}\nstars.seed={}\nstars.faintest_magnitude={}\nstars.brightness={}\n", d.stars.enabled,
+                     d.stars.seed, formatNumber(d.stars.faintestMagnitude), formatNumber(d.stars.brightness));
   for (size_t i = 0; i < d.layers.size(); ++i) {
     const NoiseLayer& l = d.layers[i];
     const noise::NoiseSettings& n = l.noise;

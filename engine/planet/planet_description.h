@@ -55,6 +55,57 @@ struct PlanetColors {
   glm::vec3 snow{0.0f};             // snow above the snow line and ice caps
 };
 
+// The sky of a planet (issue 4): optional tables of the preset. A table that is left out turns
+// its effect off (an airless moon has no [atmosphere], a dry one no ocean, and so on).
+
+// Single scattering by air molecules (Rayleigh) and aerosols (Mie) in an exponential
+// atmosphere, plus an optional ozone layer that only absorbs (Bruneton & Neyret 2008 and the
+// parameters of its 2017 reference implementation). Coefficients are per metre at the ground.
+struct AtmosphereDescription {
+  bool enabled = false;
+  double heightM = 100'000.0;                               // top of the atmosphere above the radius sphere
+  glm::dvec3 rayleighScattering{5.8e-6, 13.5e-6, 33.1e-6};  // β_R (red, green, blue)
+  double rayleighScaleHeightM = 8'000.0;
+  glm::dvec3 mieScattering{21e-6, 21e-6, 21e-6};  // β_M (grey for Earth; coloured dust for Mars)
+  double mieExtinctionRatio = 1.11;               // Mie extinction / scattering (aerosols absorb a little)
+  double mieScaleHeightM = 1'200.0;
+  double mieG = 0.76;                         // Cornette-Shanks asymmetry: forward scattering
+  glm::dvec3 ozoneAbsorption{0.0, 0.0, 0.0};  // at the layer's peak; Earth: 0.65, 1.881, 0.085 ·10⁻⁶
+  double ozoneCenterM = 25'000.0;             // the ozone density is a tent around this altitude
+  double ozoneWidthM = 30'000.0;              // full width of the tent
+};
+
+// A cloud shell (seed 001 §4.4): three noise images cross-faded over time (its eq. 4.2) and
+// Hugo Elias's cover function d = 1 − S^max(0, v − (1 − coverage)) (its eq. 4.1), drawn as a
+// layer between two altitudes that is lit by the sun and shadows the ground.
+struct CloudDescription {
+  bool enabled = false;
+  double bottomM = 2'000.0;          // base of the layer above the radius sphere
+  double topM = 8'000.0;             // top of the layer
+  double coverage = 0.3;             // 0: clear sky, 1: overcast
+  double sharpness = 0.01;           // S: smaller gives denser, harder-edged clouds
+  double wavelengthM = 3'000'000.0;  // largest weather systems
+  int octaves = 9;                   // of the fBm that forms the cover (finer ones come per pixel)
+  uint32_t seed = 7;
+  double windMps = 20.0;           // drift of the whole layer eastward
+  double evolvePeriodS = 7'200.0;  // one cycle of the three-image cross-fade
+  double opacity = 3.0;            // optical depth of a full-density column through the layer
+};
+
+struct WaterDescription {
+  double clarityM = 30.0;         // depth at which the sea floor has faded out of sight
+  double waveWavelengthM = 40.0;  // largest ripples of the animated normal perturbation
+  double waveSlope = 0.06;        // their steepness (0: a mirror)
+};
+
+// The starfield behind everything (engine/render/starfield.h).
+struct StarDescription {
+  bool enabled = true;
+  uint32_t seed = 1;
+  double faintestMagnitude = 7.0;  // stars down to this apparent magnitude
+  double brightness = 1.0;         // scales every star (1: a magnitude-0 star as in the docs)
+};
+
 struct PlanetDescription {
   std::string name;
   double radiusM = 0.0;            // radius of the sphere the heights are measured from
@@ -64,6 +115,10 @@ struct PlanetDescription {
   double baseHeightM = 0.0;        // constant added to the layer sum (moves the coastline)
   std::vector<NoiseLayer> layers;  // summed; at least one
   PlanetColors colors;
+  AtmosphereDescription atmosphere;
+  CloudDescription clouds;
+  WaterDescription water;  // used when hasOcean
+  StarDescription stars;
 };
 
 // A closed interval [min, max]; every bound the parser checks is one of the constants below.
@@ -83,6 +138,25 @@ inline constexpr Range kBeachHeightRangeM{0.0, 1e3};
 inline constexpr Range kSnowLineRangeM{-1e5, 1e5};
 inline constexpr Range kIceCapLatitudeRangeDeg{0.0, 90.0};
 inline constexpr Range kColorComponentRange{0.0, 1.0};
+inline constexpr Range kAtmosphereHeightRangeM{1e3, 1e7};
+inline constexpr Range kScatteringRange{0.0, 1e-2};  // per metre
+inline constexpr Range kScaleHeightRangeM{10.0, 1e6};
+inline constexpr Range kMieExtinctionRatioRange{1.0, 10.0};
+inline constexpr Range kMieGRange{-0.99, 0.99};
+inline constexpr Range kOzoneAltitudeRangeM{0.0, 1e6};
+inline constexpr Range kCloudAltitudeRangeM{0.0, 1e6};
+inline constexpr Range kUnitRange{0.0, 1.0};
+inline constexpr Range kSharpnessRange{1e-6, 1.0};
+inline constexpr Range kCloudWavelengthRangeM{1e3, 1e9};
+inline constexpr Range kCloudOctavesRange{1.0, 16.0};
+inline constexpr Range kWindRangeMps{-1e3, 1e3};
+inline constexpr Range kEvolvePeriodRangeS{1.0, 1e9};
+inline constexpr Range kCloudOpacityRange{0.0, 100.0};
+inline constexpr Range kClarityRangeM{0.1, 1e4};
+inline constexpr Range kWaveWavelengthRangeM{0.01, 1e4};
+inline constexpr Range kWaveSlopeRange{0.0, 1.0};
+inline constexpr Range kMagnitudeRange{-1.0, 9.0};
+inline constexpr Range kStarBrightnessRange{0.0, 1e3};
 inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
 inline constexpr size_t kMaxNameBytes = 64;         // planet and layer names
 inline constexpr size_t kMaxPresetBytes = 1 << 20;  // a preset file larger than this is an error

@@ -5,17 +5,20 @@
 #include <numbers>
 
 #include <fmt/format.h>
+#include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "render/sky_tables.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 
 namespace planet {
 namespace {
 
-constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;  // linear shading, sRGB-encoded on store
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;     // reversed Z needs float depth
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // linear radiance, composed in place
+constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;      // the tonemapped frame, sRGB-encoded on store
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;         // reversed Z needs float depth
 
 }  // namespace
 
@@ -32,10 +35,16 @@ Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const 
     : context_(context), planet_(planet), settings_(settings) {
   validateRenderSettings(settings);
   try {
-    terrain_ = std::make_unique<TerrainPass>(context, planet, settings.terrain, kColorFormat, kDepthFormat);
+    skyTables_ = std::make_unique<SkyTables>(context, planet);
+    terrain_ = std::make_unique<TerrainPass>(context, planet, settings.terrain, kHdrFormat, kDepthFormat, *skyTables_);
+    sky_ = std::make_unique<SkyPass>(context, planet, *skyTables_, settings.sky, kColorFormat);
     const VkExtent2D extent{settings.width, settings.height};
+    hdr_ = vk::createImage2D(context, extent, kHdrFormat,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
     color_ = vk::createImage2D(context, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-    depth_ = vk::createImage2D(context, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    depth_ = vk::createImage2D(context, extent, kDepthFormat,
+                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    sky_->setTargets(hdr_, depth_);
     if (context.timestampValidBits) {
       timer_.create(context, 16);
       timerCreated_ = true;
@@ -53,7 +62,10 @@ void Renderer::release() {
   timerCreated_ = false;
   vk::destroyImage(context_, depth_);
   vk::destroyImage(context_, color_);
+  vk::destroyImage(context_, hdr_);
+  sky_.reset();
   terrain_.reset();
+  skyTables_.reset();
 }
 
 CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const {
@@ -66,7 +78,35 @@ CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const
   return result;
 }
 
-RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun) {
+namespace {
+
+VkRenderingAttachmentInfo clearedAttachment(const vk::Image& image, VkImageLayout layout) {
+  VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  attachment.imageView = image.view;
+  attachment.imageLayout = layout;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  return attachment;  // clear value zero: black, and reversed-Z depth 0 (infinitely far)
+}
+
+void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo* color,
+                    const VkRenderingAttachmentInfo* depth) {
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = color;
+  rendering.pDepthAttachment = depth;
+  vkCmdBeginRendering(cmd, &rendering);
+  VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace
+
+RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
   RenderResult result;
   result.camera = clampToGround(requested, &result.cameraRaised);
   TerrainView view;
@@ -75,44 +115,63 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun) {
   view.width = settings_.width;
   view.height = settings_.height;
   view.sunDirection = sunDirection(sun, result.camera);
-  terrain_->prepare(view);
+  view.timeS = timeS;
+  const TerrainFrameInfo& frame = terrain_->prepare(view);
 
+  const glm::dmat3 planetToLocal = glm::transpose(frame.orientation.localToPlanet);
+  SkyView skyView;
+  skyView.viewProjection =
+      reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), frame.nearPlaneM) *
+      viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
+  skyView.localToPlanet = frame.orientation.localToPlanet;
+  skyView.forward = planetToLocal * view.camera.forward;
+  skyView.sunLocal = planetToLocal * view.sunDirection;
+  skyView.cameraPlanet = view.camera.position;
+  skyView.altitudeM = frame.orientation.altitudeM;
+  skyView.nearPlaneM = frame.nearPlaneM;
+  skyView.timeS = timeS;
+  skyView.pixelAngleRad = view.fovYRad / double(view.height);
+  sky_->prepare(skyView, settings_.width, settings_.height);
+
+  const VkExtent2D extent{settings_.width, settings_.height};
   vk::GpuTimer* timer = timerCreated_ ? &timer_ : nullptr;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
     if (timer) timer->reset(cmd);
+    skyTables_->recordBuild(cmd, timer);
     terrain_->recordCompute(cmd, timer);
-    // Earlier contents are discarded: the frame clears both attachments.
-    color_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    // Earlier contents are discarded: the frame clears the HDR target and the depth.
+    hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     depth_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    vk::transitionImage(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+    color_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    colorAttachment.imageView = color_.view;
-    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    colorAttachment.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};  // space (stars come with the sky pass)
-    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = depth_.view;
-    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depthAttachment.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {settings_.width, settings_.height}};
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &colorAttachment;
-    rendering.pDepthAttachment = &depthAttachment;
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport{0.0f, 0.0f, float(settings_.width), float(settings_.height), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, {settings_.width, settings_.height}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const VkRenderingAttachmentInfo depthAttachment =
+        clearedAttachment(depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
     terrain_->recordDraw(cmd, timer);
+    vkCmdEndRendering(cmd);
+    // The compose pass reads and writes the HDR colour and samples the depth.
+    vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    sky_->recordCompose(cmd, timer);
+    // The tonemap's fragments read what the compose pass wrote.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    vk::transitionImage(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    const VkRenderingAttachmentInfo colorAttachment =
+        clearedAttachment(color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    beginRendering(cmd, extent, &colorAttachment, nullptr);
+    sky_->recordTonemap(cmd, timer);
     vkCmdEndRendering(cmd);
   });
   if (timer) result.timings = timer->results(context_);
@@ -121,7 +180,17 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun) {
   result.image.width = settings_.width;
   result.image.height = settings_.height;
   result.image.pixels = std::move(pixels);
+  if (readHdr) result.hdr = readHdrImage();
   return result;
+}
+
+std::vector<glm::vec4> Renderer::readHdrImage() {
+  std::vector<uint8_t> bytes = vk::readbackImage(context_, hdr_);
+  std::vector<glm::vec4> texels(size_t(settings_.width) * settings_.height);
+  const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
+  for (size_t i = 0; i < texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) texels[i][c] = glm::unpackHalf1x16(halves[4 * i + size_t(c)]);
+  return texels;
 }
 
 }  // namespace planet

@@ -1,7 +1,8 @@
-// Headless rendering of a planet into an offscreen target (issue 3, point 9): one frame is CPU
-// preparation in double, compute (heights, normals, patch textures), then the terrain draw
-// into an sRGB colour target with a reversed-Z float depth buffer, timed per pass, and read
-// back as RGBA8. The viewer (later) records the same passes into its swapchain images.
+// Headless rendering of a planet into an offscreen target (issues 3 and 4): one frame is CPU
+// preparation in double; compute (sky tables once, heights, normals, patch textures); the
+// terrain and water draws into an HDR target with a reversed-Z float depth buffer; the sky
+// compose pass (atmosphere, clouds, sun, star fading); the tonemap into an sRGB target, read
+// back as RGBA8. Every pass is timed. The viewer records the same passes into its swapchain.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "core/image_file.h"
 #include "planet/planet_description.h"
 #include "render/camera.h"
+#include "render/sky_pass.h"
 #include "render/terrain_pass.h"
 #include "vk/image.h"
 #include "vk/timer.h"
@@ -31,6 +33,7 @@ struct RenderSettings {
   uint32_t height = 540;
   double fovYDeg = 60.0;
   TerrainSettings terrain;
+  SkySettings sky;
 };
 
 // Throws planet::Error naming the first bad value (size 0 or above kRenderMaxSize, field of
@@ -39,11 +42,14 @@ void validateRenderSettings(const RenderSettings& settings);
 
 struct RenderResult {
   Rgba8Image image;
+  std::vector<glm::vec4> hdr;  // the HDR frame before the tonemap (when asked for)
   TerrainFrameInfo terrain;
   std::vector<vk::GpuTiming> timings;  // per pass, in recording order
   CameraPose camera;                   // as rendered (raised when it was below the ground)
   bool cameraRaised = false;
 };
+
+class SkyTables;
 
 class Renderer {
  public:
@@ -54,7 +60,8 @@ class Renderer {
 
   // Renders one frame and reads it back. Frames of one Renderer form a sequence: the clipmap
   // orientation is carried from one to the next, and unchanged heights are not recomputed.
-  RenderResult render(const CameraPose& camera, const SunPose& sun);
+  // `timeS` is the animation phase (clouds, waves); `readHdr` also returns the HDR frame.
+  RenderResult render(const CameraPose& camera, const SunPose& sun, double timeS = 0.0, bool readHdr = false);
 
   // The camera after the eye-height rule: an altitude below the ground (or the water) plus
   // kMinEyeHeightM is raised to it.
@@ -65,11 +72,15 @@ class Renderer {
 
  private:
   void release();
+  std::vector<glm::vec4> readHdrImage();
 
   vk::Context& context_;
   PlanetDescription planet_;
   RenderSettings settings_;
+  std::unique_ptr<SkyTables> skyTables_;
   std::unique_ptr<TerrainPass> terrain_;
+  std::unique_ptr<SkyPass> sky_;
+  vk::Image hdr_;
   vk::Image color_;
   vk::Image depth_;
   vk::GpuTimer timer_;

@@ -11,10 +11,13 @@
 #include "planet/octave_budget.h"
 #include "planet/terrain_height.h"
 #include "render/patch_textures.h"
+#include "render/sky_tables.h"
 #include "spv/terrain.frag.h"
 #include "spv/terrain.vert.h"
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_normals.comp.h"
+#include "spv/water.frag.h"
+#include "spv/water.vert.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/graphics_pipeline.h"
@@ -36,6 +39,7 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // permutations
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // budgets
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // patches
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
 };
 constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
 
@@ -53,8 +57,8 @@ double ringSpacingM(const ClipmapParams& params, double radiusM, uint32_t ring) 
 }
 
 TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
-                         VkFormat colorFormat, VkFormat depthFormat)
-    : context_(context), planet_(planet), settings_(settings) {
+                         VkFormat colorFormat, VkFormat depthFormat, const SkyTables& sky)
+    : context_(context), planet_(planet), settings_(settings), sky_(sky) {
   if (settings.subPixelRings == 0 || settings.subPixelRings > 64)
     throw Error(fmt::format("sub-pixel ring factor {} is outside 1..64", settings.subPixelRings));
   // Wireframe draws edges only, so patch textures would be built for nothing.
@@ -120,6 +124,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
       vk::writeBufferDescriptor(context, set_, b, kBindingTypes[b], *buffers[b]);
     vk::writeImageDescriptor(context, set_, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
+    vk::writeImageDescriptor(context, set_, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
 
     layout_ =
         vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
@@ -137,6 +143,14 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     desc.cullMode = settings.wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     drawPipeline_ = vk::createGraphicsPipeline(context, desc);
+    if (planet.hasOcean && settings_.water && !settings_.wireframe) {
+      // The sea over the ground: premultiplied "over" blending, depth tested and written.
+      desc.vertexSpirv = kSpv_water_vert;
+      desc.fragmentSpirv = kSpv_water_frag;
+      desc.alphaBlend = true;
+      desc.premultipliedAlpha = true;
+      waterPipeline_ = vk::createGraphicsPipeline(context, desc);
+    }
   } catch (...) {
     release();
     throw;
@@ -147,13 +161,14 @@ TerrainPass::~TerrainPass() { release(); }
 
 void TerrainPass::release() {
   VkDevice device = context_.device;
+  if (waterPipeline_) vkDestroyPipeline(device, waterPipeline_, nullptr);
   if (drawPipeline_) vkDestroyPipeline(device, drawPipeline_, nullptr);
   if (normalsPipeline_) vkDestroyPipeline(device, normalsPipeline_, nullptr);
   if (heightsPipeline_) vkDestroyPipeline(device, heightsPipeline_, nullptr);
   if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  drawPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
+  waterPipeline_ = drawPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
   layout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
@@ -237,14 +252,18 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.viewProjection = glm::mat4(viewProjection);
   u.localToPlanet = glm::mat4(glm::mat3(o.localToPlanet));
   u.planetToLocal = glm::mat4(glm::mat3(glm::transpose(o.localToPlanet)));
-  u.camera = glm::vec4(float(o.altitudeM), float(planet_.radiusM), 0.0f, 0.0f);
+  u.camera = glm::vec4(float(o.altitudeM), float(planet_.radiusM), float(view.timeS), float(planet_.water.waveSlope));
   const PlanetColors& c = planet_.colors;
   u.planet =
       glm::vec4(float(planet_.seaLevelM), planet_.hasOcean ? 1.0f : 0.0f, float(c.beachHeightM), float(c.snowLineM));
   u.shading = glm::vec4(float(std::sin(c.iceCapLatitudeDeg * std::numbers::pi / 180.0)), float(int(c.scheme)),
                         settings_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
   const glm::dvec3 sunLocal = glm::transpose(o.localToPlanet) * view.sunDirection;
-  u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(settings_.sunIntensity));
+  u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(gpu::kSunIrradiance * settings_.sunIntensity));
+  u.water = glm::vec4(float(planet_.water.clarityM), float(planet_.water.waveWavelengthM), waterPipeline_ ? 1.0f : 0.0f,
+                      0.0f);
+  u.atmosphere = sky_.atmosphere();
+  for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)];
   u.colorDeepWater = toVec4(c.deepWater);
   u.colorShallowWater = toVec4(c.shallowWater);
   u.colorBeach = toVec4(c.beach);
@@ -272,6 +291,19 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
       u.patchLevels[j] =
           glm::vec4(float(level.layer), float(1.0 / (texel * layout.resolution)),
                     float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
+    }
+    // Water waves: deep-water waves (ω² = g k) of falling wavelength in four directions; the
+    // phase at the reference point in double, so the pixel's float part stays small.
+    constexpr double kWaveScale[gpu::kWaterWaveCount] = {1.0, 0.61, 0.37, 0.23};
+    constexpr double kWaveAngle[gpu::kWaterWaveCount] = {0.3, 1.9, 3.7, 5.1};
+    constexpr double kWaveShare[gpu::kWaterWaveCount] = {0.4, 0.3, 0.2, 0.1};
+    for (uint32_t i = 0; i < gpu::kWaterWaveCount; ++i) {
+      const double k = 2.0 * std::numbers::pi / (planet_.water.waveWavelengthM * kWaveScale[i]);
+      const glm::dvec2 wave = k * glm::dvec2(std::cos(kWaveAngle[i]), std::sin(kWaveAngle[i]));
+      const double omega = std::sqrt(9.81 * k);
+      const double phase = wave.x * refA * planet_.radiusM + wave.y * refB * planet_.radiusM - omega * view.timeS;
+      u.waves[i] = glm::vec4(float(wave.x), float(wave.y), float(std::remainder(phase, 2.0 * std::numbers::pi)),
+                             float(kWaveShare[i]));
     }
   }
   vk::uploadBuffer(context_, uniforms_, &u, sizeof(u));
@@ -337,8 +369,16 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const IndexRange bands = mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing);
   if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
   const uint32_t n = settings_.mesh.numPhi;
-  vkCmdDrawIndexed(cmd, 3 * n, 1, mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 0, 0);
+  const uint32_t fanFirst = mesh_.indexCount() + 3 * n * frame_.rings.lastRing;
+  vkCmdDrawIndexed(cmd, 3 * n, 1, fanFirst, 0, 0);
   if (timer) timer->end(cmd);
+  if (waterPipeline_) {
+    if (timer) timer->begin(cmd, "water");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, waterPipeline_);
+    if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
+    vkCmdDrawIndexed(cmd, 3 * n, 1, fanFirst, 0, 0);
+    if (timer) timer->end(cmd);
+  }
 }
 
 }  // namespace planet

@@ -28,6 +28,7 @@ class GpuTimer;
 namespace planet {
 
 class PatchTextures;
+class SkyTables;
 
 struct TerrainSettings {
   // 30 levels reach θ = π·2^−30 (2 cm on Earth): deep enough that, at 2 m altitude, rings are
@@ -42,8 +43,9 @@ struct TerrainSettings {
   PatchSettings patchSettings;
   bool wireframe = false;           // debug: triangle edges only
   double bandWavelengthM = 6000.0;  // scale of the noise that frays colour-band edges
-  double ambient = 0.10;            // sky light on ground that faces away from the sun (until the sky pass lights it)
-  double sunIntensity = 1.0;
+  double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
+  double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
+  bool water = true;          // draw the water sphere (planets with an ocean)
 };
 
 // What the CPU decided for a frame.
@@ -77,12 +79,14 @@ struct TerrainView {
   uint32_t width = 960;
   uint32_t height = 540;
   glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // planet frame, unit
+  double timeS = 0.0;                      // animation time (waves)
 };
 
 class TerrainPass {
  public:
+  // `sky` provides the transmittance table and sky irradiance the shading uses; it must outlive the pass.
   TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
-              VkFormat colorFormat, VkFormat depthFormat);
+              VkFormat colorFormat, VkFormat depthFormat, const SkyTables& sky);
   ~TerrainPass();
   TerrainPass(const TerrainPass&) = delete;
   TerrainPass& operator=(const TerrainPass&) = delete;
@@ -93,7 +97,8 @@ class TerrainPass {
   // Compute half: heights and normals (skipped when nothing that feeds them changed since the
   // last computed frame), then the patch levels that moved. Call after prepare().
   void recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer);
-  // The draw, inside a dynamic-rendering scope with the target's formats.
+  // The draw, inside a dynamic-rendering scope with the target's formats: the ground, then the
+  // water sphere over it (planets with an ocean).
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   const ClipmapMesh& mesh() const { return mesh_; }
@@ -135,6 +140,8 @@ class TerrainPass {
   VkPipeline heightsPipeline_ = VK_NULL_HANDLE;
   VkPipeline normalsPipeline_ = VK_NULL_HANDLE;
   VkPipeline drawPipeline_ = VK_NULL_HANDLE;
+  VkPipeline waterPipeline_ = VK_NULL_HANDLE;
+  const SkyTables& sky_;
 
   TerrainFrameInfo frame_;
   OctaveTables tables_;

@@ -25,7 +25,8 @@ struct GraphicsPipelineDesc {
   bool depthTest = true;
   bool depthWrite = true;
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z: nearer is larger
-  bool alphaBlend = false;                           // premultiplied-free "over" blending
+  bool alphaBlend = false;                           // "over" blending: src·α + dst·(1 − α)
+  bool premultipliedAlpha = false;                   // with alphaBlend: src + dst·(1 − α) (colour already weighted)
 };
 
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);

@@ -31,7 +31,7 @@ uint32_t formatTexelSize(VkFormat format) {
 namespace {
 
 Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                  VkImageViewType viewType) {
+                  VkImageViewType viewType, bool cube = false) {
   if (extent.width == 0 || extent.height == 0 || layers == 0) throw Error("cannot create an image of size 0");
   Image image;
   image.format = format;
@@ -47,6 +47,7 @@ Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (cube) info.flags = VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
   VK_CHECK(vkCreateImage(context.device, &info, nullptr, &image.image));
   try {
     image.allocation = context.allocator.allocateForImage(image.image, MemoryUsage::DeviceLocal, ResourceKind::Optimal);
@@ -58,6 +59,10 @@ Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat
     viewInfo.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
                                  1, 0, layers};
     VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.view));
+    if (cube) {
+      viewInfo.viewType = VK_IMAGE_VIEW_TYPE_CUBE;
+      VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.cubeView));
+    }
   } catch (...) {
     destroyImage(context, image);
     throw;
@@ -76,7 +81,12 @@ Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, V
   return createImage(context, extent, layers, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
 }
 
+Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage) {
+  return createImage(context, {size, size}, 6, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY, true);
+}
+
 void destroyImage(Context& context, Image& image) {
+  if (image.cubeView) vkDestroyImageView(context.device, image.cubeView, nullptr);
   if (image.view) vkDestroyImageView(context.device, image.view, nullptr);
   if (image.image) vkDestroyImage(context.device, image.image, nullptr);
   context.allocator.free(image.allocation);

@@ -18,6 +18,7 @@ struct Image {
   Allocation allocation;
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{0, 0};
+  VkImageView cubeView = VK_NULL_HANDLE;             // createImageCube only: the six layers as a cube
   uint32_t layers = 1;                               // array layers
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
 };
@@ -29,6 +30,9 @@ Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImag
 // An array of `layers` 2D images with one VK_IMAGE_VIEW_TYPE_2D_ARRAY view over all of them (also for 1).
 Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
                          VkImageUsageFlags usage);
+// Six square layers (+x, −x, +y, −y, +z, −z) that can be sampled as a cube map: `view` is the
+// 2D-array view (for storage writes), `cubeView` the cube view (for samplerCube).
+Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage);
 void destroyImage(Context& context, Image& image);
 
 // Records a layout transition of the whole image with a full barrier between the given stages.

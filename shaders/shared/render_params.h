@@ -10,6 +10,7 @@
 #define PLANET_SHARED_RENDER_PARAMS_H
 
 #include "shared/gpu_types.h"
+#include "shared/sky_params.h"
 #include "shared/terrain_params.h"
 
 GPU_NAMESPACE_BEGIN
@@ -17,18 +18,21 @@ GPU_NAMESPACE_BEGIN
 GPU_CONST uint kPatchMaxLevelsGpu = 16u;  // = kPatchMaxLevels (engine/render/patch_layout.h)
 
 // Bindings of set 0, shared by all four terrain shaders.
-GPU_CONST uint kRenderBindingFrame = 0u;         // uniform FrameUniforms
-GPU_CONST uint kRenderBindingMesh = 1u;          // ClipmapVertex[] (vec4 direction, vec4 (θ, φ, ring, level))
-GPU_CONST uint kRenderBindingSurface = 2u;       // vec4[]: xyz = sea-sphere point − anchor (local), w = height m
-GPU_CONST uint kRenderBindingNormals = 3u;       // vec4[]: xyz = unit normal (local), w unused
-GPU_CONST uint kRenderBindingAttributes = 4u;    // vec4[]: face Δa, Δb, colour-band noise, sin(latitude)
-GPU_CONST uint kRenderBindingLayers = 5u;        // TerrainLayer[kTerrainMaxLayers]
-GPU_CONST uint kRenderBindingRemainders = 6u;    // vec4[kTerrainMaxLayers * kNoiseMaxOctaves]
-GPU_CONST uint kRenderBindingShifts = 7u;        // uvec4[kTerrainMaxLayers * kNoiseMaxOctaves]
-GPU_CONST uint kRenderBindingPermutations = 8u;  // uint[kTerrainMaxLayers * kNoisePermutationSize]
-GPU_CONST uint kRenderBindingBudgets = 9u;       // RingBudget[rings + 1] (the pole last)
-GPU_CONST uint kRenderBindingPatches = 10u;      // sampler2DArray: normal (planet frame), height m
-GPU_CONST uint kRenderBindingCount = 11u;
+GPU_CONST uint kRenderBindingFrame = 0u;           // uniform FrameUniforms
+GPU_CONST uint kRenderBindingMesh = 1u;            // ClipmapVertex[] (vec4 direction, vec4 (θ, φ, ring, level))
+GPU_CONST uint kRenderBindingSurface = 2u;         // vec4[]: xyz = sea-sphere point − anchor (local), w = height m
+GPU_CONST uint kRenderBindingNormals = 3u;         // vec4[]: xyz = unit normal (local), w unused
+GPU_CONST uint kRenderBindingAttributes = 4u;      // vec4[]: face Δa, Δb, colour-band noise, sin(latitude)
+GPU_CONST uint kRenderBindingLayers = 5u;          // TerrainLayer[kTerrainMaxLayers]
+GPU_CONST uint kRenderBindingRemainders = 6u;      // vec4[kTerrainMaxLayers * kNoiseMaxOctaves]
+GPU_CONST uint kRenderBindingShifts = 7u;          // uvec4[kTerrainMaxLayers * kNoiseMaxOctaves]
+GPU_CONST uint kRenderBindingPermutations = 8u;    // uint[kTerrainMaxLayers * kNoisePermutationSize]
+GPU_CONST uint kRenderBindingBudgets = 9u;         // RingBudget[rings + 1] (the pole last)
+GPU_CONST uint kRenderBindingPatches = 10u;        // sampler2DArray: normal (planet frame), height m
+GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere's transmittance table
+GPU_CONST uint kRenderBindingCount = 12u;
+GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
+GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/render/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
 
 // Octaves of every layer at one ring's vertex spacing (engine/planet/octave_budget.h).
@@ -42,10 +46,12 @@ struct FrameUniforms {
   mat4 viewProjection;  // local frame, camera at the origin → clip (reversed-Z, infinite far)
   mat4 localToPlanet;   // rotation (upper 3×3): local → planet frame directions
   mat4 planetToLocal;   // its transpose
-  vec4 camera;          // x: camera altitude above the radius sphere (m), y: radius (m), z: time (s), w: unused
-  vec4 planet;          // x: sea level (m), y: 1 if the planet has an ocean, z: beach height (m), w: snow line (m)
-  vec4 shading;         // x: sin(ice cap latitude), y: colour scheme, z: wireframe (1/0), w: ambient
-  vec4 sunLocal;        // xyz: unit direction toward the sun (local frame), w: sun intensity
+  vec4 camera;    // x: camera altitude above the radius sphere (m), y: radius (m), z: time (s), w: water wave slope
+  vec4 planet;    // x: sea level (m), y: 1 if the planet has an ocean, z: beach height (m), w: snow line (m)
+  vec4 shading;   // x: sin(ice cap latitude), y: colour scheme, z: wireframe (1/0), w: ambient (fraction of the sun's
+                  // irradiance; airless bodies)
+  vec4 sunLocal;  // xyz: unit direction toward the sun (local frame), w: sun irradiance
+  vec4 water;     // x: clarity depth (m), y: largest wave wavelength (m), z: 1 if the water pass draws, w: unused
   vec4 colorDeepWater;  // rgb linear; w unused
   vec4 colorShallowWater;
   vec4 colorBeach;
@@ -55,14 +61,20 @@ struct FrameUniforms {
   vec4 colorSnow;
   // Patch textures: the face's axes in the local frame, and the reference point the per-vertex
   // face offsets (attributes.xy) are measured from.
-  vec4 faceAxisA;       // xyz: A (planet frame), w: c_ref·A
-  vec4 faceAxisB;       // xyz: B (planet frame), w: c_ref·B
-  vec4 faceNormal;      // xyz: N (planet frame), w: c_ref·N
-  vec4 refMinusNadir;   // xyz: c_ref − nadir direction (planet frame, unit sphere), w: patch level count
+  vec4 faceAxisA;      // xyz: A (planet frame), w: c_ref·A
+  vec4 faceAxisB;      // xyz: B (planet frame), w: c_ref·B
+  vec4 faceNormal;     // xyz: N (planet frame), w: c_ref·N
+  vec4 refMinusNadir;  // xyz: c_ref − nadir direction (planet frame, unit sphere), w: patch level count
   // Per level (finest first): x: layer, y: 1 / (Δ·resolution), z, w: (a_ref − originA·Δ), (b_ref − originB·Δ)
   vec4 patchLevels[kPatchMaxLevelsGpu];
+  AtmosphereParams atmosphere;
+  // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
+  vec4 skyIrradiance[kSkyIrradianceSamplesGpu];
+  // Water waves: xy: wave vector along the face axes (1/m), z: phase at the face reference
+  // point (computed in double, wrapped to ±π), w: the wave's share of the slope.
+  vec4 waves[kWaterWaveCount];
 };
-GPU_ASSERT_SIZE(FrameUniforms, 688)
+GPU_ASSERT_SIZE(FrameUniforms, 1120)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
@@ -71,7 +83,7 @@ struct TerrainComputePush {
   uint numPhi;       // vertices per ring
   uint ringCount;    // rings of the mesh (the pole is vertex ringCount · numPhi)
   uint layerCount;
-  uint firstRing;    // the range's outermost and innermost rings (normals take neighbours inside it)
+  uint firstRing;  // the range's outermost and innermost rings (normals take neighbours inside it)
   uint lastRing;
   uint poleNeighbourRing;  // the ring whose vertices around the pole give the pole its normal
   float baseHeightM;

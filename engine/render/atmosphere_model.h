@@ -1,0 +1,53 @@
+// The atmosphere on the CPU (issue 4, point 2): the coefficients the shaders get, and the CPU
+// reference of shaders/common/atmosphere.glsl (the same source compiled as C++, in double),
+// used to check the GPU's transmittance table and to integrate the sky's irradiance.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "planet/planet_description.h"
+#include "shared/sky_params.h"
+
+namespace planet {
+
+// The sun's angular radius as drawn (the real sun's 0.267° is under 3 pixels in a 60° view;
+// this is a little larger so that it reads as a disc).
+inline constexpr double kSunAngularRadiusRad = 0.0075;
+
+// The description's atmosphere as the shaders read it (zero coefficients when it has none,
+// so that every transmittance is 1).
+gpu::AtmosphereParams makeAtmosphereParams(const PlanetDescription& planet);
+
+// Transmittance from altitude h (m above the radius) along zenith cosine mu to the top of the
+// atmosphere, by `steps` midpoint steps in double; the planet is not an obstacle here.
+glm::dvec3 transmittanceToTop(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu,
+                              uint32_t steps = 4096);
+
+// The altitude (x) and zenith cosine (y) that transmittance-table coordinates (u, v) in [0, 1]
+// stand for (the table's parameterisation, shaders/common/atmosphere.glsl).
+glm::dvec2 transmittanceTexelAltitudeMu(const gpu::AtmosphereParams& atmosphere, double u, double v);
+
+// Single-scattered sky radiance (per the params' sun irradiance) seen from altitude h looking
+// along zenith cosine mu, with the sun at zenith cosine muS and view-sun cosine nu, over the
+// whole ray (to the top of the atmosphere, or to the ground where the ray meets it).
+struct SkySample {
+  glm::dvec3 radiance;
+  glm::dvec3 transmittance;
+};
+SkySample skyRadiance(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu, double muS, double nu,
+                      uint32_t steps = 256, uint32_t sunSteps = 256);
+
+// Irradiance from the sky on a horizontal surface at the ground, for the sun at zenith
+// cosine muS: the hemisphere integral of skyRadiance · cos θ (no ground bounce).
+glm::dvec3 skyIrradiance(const gpu::AtmosphereParams& atmosphere, double muS);
+
+// skyIrradiance at kSkyIrradianceSamples sun cosines from -0.2 to 1 (the terrain's ambient
+// light interpolates them by each point's own sun elevation).
+inline constexpr int kSkyIrradianceSamples = 16;
+inline constexpr double kSkyIrradianceMinMuS = -0.2;
+std::array<glm::vec4, kSkyIrradianceSamples> skyIrradianceTable(const gpu::AtmosphereParams& atmosphere);
+
+}  // namespace planet

@@ -1,0 +1,90 @@
+// The sky compose and tonemap passes (issue 4, point 2; DESIGN.md "One frame", step 3):
+// after stars, terrain and water are drawn into the HDR target, the compose compute pass adds
+// the atmosphere (sky, aerial perspective), the clouds and their shadows, the sun's disc and
+// the star fading (shaders/sky.comp); the tonemap pass then maps HDR to the display target
+// (shaders/tonemap.frag) with an exposure and a filmic curve.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "planet/planet_description.h"
+#include "shared/sky_params.h"
+#include "vk/buffer.h"
+#include "vk/image.h"
+
+namespace planet::vk {
+class Context;
+class GpuTimer;
+}  // namespace planet::vk
+
+namespace planet {
+
+class SkyTables;
+
+struct SkySettings {
+  uint32_t viewSamples = 16;  // atmosphere samples along each pixel's ray (split over cloud crossings)
+  double exposure = 10.0;     // HDR scale before the tonemap curve
+  bool clouds = true;         // draw the preset's clouds (if it has any)
+};
+
+// What the compose pass needs to know about the frame (local frame of the terrain pass:
+// camera at (0, 0, altitude) above the anchor, +z up).
+struct SkyView {
+  glm::dmat4 viewProjection;  // local, camera at the origin → clip
+  glm::dmat3 localToPlanet;
+  glm::dvec3 forward;       // local
+  glm::dvec3 sunLocal;      // local, unit
+  glm::dvec3 cameraPlanet;  // planet frame, m
+  double altitudeM = 0.0;   // above the radius sphere
+  double nearPlaneM = 1.0;
+  double timeS = 0.0;
+  double pixelAngleRad = 1e-3;  // view angle of one pixel (vertical field of view / height)
+};
+
+class SkyPass {
+ public:
+  SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables, const SkySettings& settings,
+          VkFormat outputFormat);
+  ~SkyPass();
+  SkyPass(const SkyPass&) = delete;
+  SkyPass& operator=(const SkyPass&) = delete;
+
+  // Points the passes at the frame's HDR colour (storage, GENERAL while composing) and depth
+  // (sampled) images; call again when they are recreated.
+  void setTargets(const vk::Image& hdr, const vk::Image& depth);
+  // Writes the frame's uniforms (before recording).
+  void prepare(const SkyView& view, uint32_t width, uint32_t height);
+  // Compose: hdr in GENERAL and depth in SHADER_READ_ONLY_OPTIMAL, both after the draws.
+  void recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  // Tonemap: inside a dynamic-rendering scope on the output target.
+  void recordTonemap(VkCommandBuffer cmd, vk::GpuTimer* timer);
+
+  const SkySettings& settings() const { return settings_; }
+
+ private:
+  void release();
+
+  vk::Context& context_;
+  PlanetDescription planet_;
+  const SkyTables& tables_;
+  SkySettings settings_;
+  vk::Buffer uniforms_;
+  gpu::SkyUniforms uniformData_{};
+  VkDescriptorSetLayout composeSetLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool composePool_ = VK_NULL_HANDLE;
+  VkDescriptorSet composeSet_ = VK_NULL_HANDLE;
+  VkPipelineLayout composeLayout_ = VK_NULL_HANDLE;
+  VkPipeline composePipeline_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout tonemapSetLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool tonemapPool_ = VK_NULL_HANDLE;
+  VkDescriptorSet tonemapSet_ = VK_NULL_HANDLE;
+  VkPipelineLayout tonemapLayout_ = VK_NULL_HANDLE;
+  VkPipeline tonemapPipeline_ = VK_NULL_HANDLE;
+  VkSampler depthSampler_ = VK_NULL_HANDLE;
+  uint32_t width_ = 0, height_ = 0;
+};
+
+}  // namespace planet

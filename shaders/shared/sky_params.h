@@ -1,0 +1,61 @@
+// The sky (issue 4): the atmosphere's coefficients and the per-frame block of the sky compose
+// pass (engine/render/sky_pass.*, shaders/sky.comp), shared by C++ and GLSL. The meaning of
+// the atmosphere's functions is in shaders/common/atmosphere.glsl.
+#ifndef PLANET_SHARED_SKY_PARAMS_H
+#define PLANET_SHARED_SKY_PARAMS_H
+
+#include "shared/gpu_types.h"
+
+GPU_NAMESPACE_BEGIN
+
+// Transmittance table (Bruneton & Neyret 2008, §4 parameterisation): u from the view zenith
+// cosine, v from the altitude; RGBA16F, rgb = transmittance to the top of the atmosphere.
+GPU_CONST uint kTransmittanceWidth = 256u;
+GPU_CONST uint kTransmittanceHeight = 64u;
+GPU_CONST uint kTransmittanceSteps = 500u;  // midpoint steps of the optical-depth integral per texel
+GPU_CONST uint kSkyWorkgroupSize = 8u;      // 8×8 invocations per group (compose, tables)
+
+// Bindings of the sky compose pass (set 0).
+GPU_CONST uint kSkyBindingUniforms = 0u;       // uniform SkyUniforms
+GPU_CONST uint kSkyBindingColor = 1u;          // image2D rgba16f: the HDR frame, read and written in place
+GPU_CONST uint kSkyBindingDepth = 2u;          // sampler2D: the frame's reversed-Z depth
+GPU_CONST uint kSkyBindingTransmittance = 3u;  // sampler2D: the transmittance table
+GPU_CONST uint kSkyBindingClouds = 4u;         // samplerCube: the three cloud cover images (rgb)
+
+// Sun irradiance at the top of the atmosphere, in the renderer's HDR units (the tonemap's
+// exposure maps a sunlit ground of albedo ~0.2 to the middle of the display range).
+GPU_CONST float kSunIrradiance = 1.0f;
+
+struct AtmosphereParams {
+  vec4 radii;  // x: planet radius R (m), y: atmosphere height above R (m), z: sun angular radius (rad), w: 1 if there
+               // is air
+  vec4 rayleigh;       // xyz: β_R per metre at the ground, w: 1 / Rayleigh scale height
+  vec4 mieScattering;  // xyz: β_M, w: 1 / Mie scale height
+  vec4 mieExtinction;  // xyz: β_M · extinction ratio, w: g
+  vec4 ozone;          // xyz: ozone absorption at the peak, w: peak altitude (m)
+  vec4 ozoneSun;       // x: ozone half width (m), y: sun irradiance, z, w: unused
+};
+GPU_ASSERT_SIZE(AtmosphereParams, 96)
+
+struct SkyUniforms {
+  AtmosphereParams atmosphere;
+  mat4 clipToLocal;    // clip (x, y) at depth 1 → view ray, local frame, camera at the origin
+  mat4 localToPlanet;  // rotation: local → planet frame directions
+  vec4 camera;         // x: camera altitude above R (m), y: near plane (m), z: exposure, w: time (s)
+  vec4 forward;        // xyz: camera forward (local), w: view samples per pixel
+  vec4 sunLocal;       // xyz: toward the sun (local), w: star brightness
+  vec4 cameraPlanet;   // xyz: camera position in the planet frame (m, float: clouds only), w: 1 if clouds
+  vec4 clouds;         // x: bottom (m above R), y: top, z: coverage, w: sharpness
+  vec4 cloudShape;     // x: optical depth of a full column, y: detail frequency (1/m), z: detail amount, w: seed mix of
+                       // the detail noise (as uint bits)
+  vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
+                       // planet's axis
+  vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: unused
+  // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
+  vec4 skyIrradiance[16];
+};
+GPU_ASSERT_SIZE(SkyUniforms, 608)
+
+GPU_NAMESPACE_END
+
+#endif

@@ -1,0 +1,162 @@
+// The sky on lavapipe (issue 4, point 6): the transmittance table against the CPU reference of
+// the same source, and pixel checks of physical expectations on rendered frames.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu_fixture.h"
+#include "planet/terrain_height.h"
+#include "render/atmosphere_model.h"
+#include "render/renderer.h"
+#include "render/sky_tables.h"
+#include "vk/commands.h"
+
+namespace planet::test {
+namespace {
+
+using SkyRender = GpuTest;
+
+struct Rgb {
+  double r = 0, g = 0, b = 0;
+  double luminance() const { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+};
+
+// Mean display colour (0..255) of the rectangle [x0, x1) × [y0, y1).
+Rgb meanColor(const Rgba8Image& image, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+  Rgb sum;
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = x0; x < x1; ++x) {
+      const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+      sum.r += p[0];
+      sum.g += p[1];
+      sum.b += p[2];
+    }
+  const double n = double(x1 - x0) * double(y1 - y0);
+  return {sum.r / n, sum.g / n, sum.b / n};
+}
+
+RenderSettings skySettings() {
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 64;
+  settings.terrain.patchSettings.resolution = 128;
+  settings.terrain.patchSettings.levelCount = 3;
+  return settings;
+}
+
+// Earth without clouds, so that the sky checks see the clear sky.
+PlanetDescription clearEarth() {
+  PlanetDescription earth = resolvePreset("earth");
+  earth.clouds.enabled = false;
+  return earth;
+}
+
+TEST_F(SkyRender, TransmittanceTableMatchesCpuReference) {
+  for (const char* preset : {"earth", "mars"}) {
+    const PlanetDescription planet = resolvePreset(preset);
+    SkyTables tables(context(), planet);
+    vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { tables.recordBuild(cmd, nullptr); });
+    const std::vector<glm::vec4> table = tables.readTransmittance();
+    ASSERT_EQ(table.size(), size_t(gpu::kTransmittanceWidth) * gpu::kTransmittanceHeight);
+    double worst = 0.0;
+    for (uint32_t y = 0; y < gpu::kTransmittanceHeight; y += 3)
+      for (uint32_t x = 0; x < gpu::kTransmittanceWidth; x += 5) {
+        const glm::dvec2 hMu = transmittanceTexelAltitudeMu(tables.atmosphere(), (x + 0.5) / gpu::kTransmittanceWidth,
+                                                            (y + 0.5) / gpu::kTransmittanceHeight);
+        const glm::dvec3 expected = transmittanceToTop(tables.atmosphere(), hMu.x, hMu.y);
+        const glm::vec4 actual = table[size_t(y) * gpu::kTransmittanceWidth + x];
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(actual[c]) - expected[c]));
+      }
+    // The table integrates with 500 float steps, the reference with 4096 double ones.
+    EXPECT_LT(worst, 2e-3) << preset;
+    // The first texel is the ground looking straight up: the closed form of an exponential
+    // atmosphere, exp(−Σ β·H·(1 − e^(−top/H))).
+    const AtmosphereDescription& a = planet.atmosphere;
+    glm::dvec3 depth(0.0);
+    const gpu::AtmosphereParams& p = tables.atmosphere();
+    for (int c = 0; c < 3; ++c)
+      depth[c] = p.rayleigh[c] * a.rayleighScaleHeightM * (1.0 - std::exp(-a.heightM / a.rayleighScaleHeightM)) +
+                 p.mieExtinction[c] * a.mieScaleHeightM * (1.0 - std::exp(-a.heightM / a.mieScaleHeightM));
+    if (a.ozoneAbsorption == glm::dvec3(0.0))
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(table[0][c], std::exp(-depth[c]), 2e-3) << preset << " channel " << c;
+  }
+}
+
+TEST_F(SkyRender, HdrFrameIsFiniteEverywhere) {
+  Renderer renderer(context(), resolvePreset("earth"), skySettings());
+  const CameraPose views[] = {
+      {20, -30, 2.0e7, 0, -90}, {20, -30, 1.0e5, 90, -10}, {20, -30, 2, 90, 10}, {0, 0, 2, 0, 90}};
+  for (const CameraPose& camera : views)
+    for (double elevation : {60.0, 1.0, -30.0}) {
+      const RenderResult result = renderer.render(camera, {135.0, elevation}, 1234.5, true);
+      ASSERT_EQ(result.hdr.size(), size_t(96 * 64));
+      for (const glm::vec4& texel : result.hdr)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_TRUE(std::isfinite(texel[c]) && texel[c] >= 0.0f)
+              << "altitude " << camera.altitudeM << " sun " << elevation << ": " << texel[c];
+    }
+}
+
+TEST_F(SkyRender, SpaceIsBlackAwayFromThePlanet) {
+  // From 20,000 km looking up (away from the planet) nothing but space (and stars) is seen.
+  Renderer renderer(context(), resolvePreset("earth"), skySettings());
+  const RenderResult result = renderer.render({20, -30, 2.0e7, 0, 80}, {135, 35});
+  const Rgb mean = meanColor(result.image, 0, 0, 96, 64);
+  EXPECT_LT(mean.luminance(), 6.0);
+}
+
+TEST_F(SkyRender, NoonSkyIsBlueAtZenithAndBrighterTowardHorizon) {
+  Renderer renderer(context(), clearEarth(), skySettings());
+  // Standing at 2 m, looking north and 45° up, the sun high in the south-east.
+  const RenderResult result = renderer.render({20, -30, 2, 0, 45}, {135, 60});
+  const Rgb top = meanColor(result.image, 32, 0, 64, 6);    // ~75° above the horizon
+  const Rgb low = meanColor(result.image, 32, 52, 64, 58);  // ~18° above the horizon
+  EXPECT_GT(top.b, top.r + 40) << top.r << " " << top.g << " " << top.b;
+  EXPECT_GT(top.b, top.g);
+  EXPECT_GT(low.luminance(), top.luminance() + 10) << low.luminance() << " vs " << top.luminance();
+}
+
+TEST_F(SkyRender, SunsetSkyIsRedShifted) {
+  Renderer renderer(context(), clearEarth(), skySettings());
+  // Looking toward the sun just above the horizon, at noon and at sunset.
+  const Rgb noon = meanColor(renderer.render({20, -30, 2, 135, 8}, {135, 60}).image, 0, 20, 96, 30);
+  const Rgb sunset = meanColor(renderer.render({20, -30, 2, 135, 8}, {135, 2}).image, 0, 20, 96, 30);
+  EXPECT_GT(sunset.r / std::max(sunset.b, 1.0), 2.0 * noon.r / std::max(noon.b, 1.0))
+      << "noon " << noon.r << "," << noon.g << "," << noon.b << " sunset " << sunset.r << "," << sunset.g << ","
+      << sunset.b;
+  EXPECT_GT(sunset.r, sunset.b);
+}
+
+// A sea point and a beach point found with the CPU reference, seen straight down from 300 m.
+TEST_F(SkyRender, OceanIsDarkerThanBeach) {
+  const PlanetDescription earth = clearEarth();
+  glm::dvec2 sea(1000.0), beach(1000.0);
+  for (double lat = -50.0; lat <= 50.0 && (sea.x > 999.0 || beach.x > 999.0); lat += 0.37)
+    for (double lon = -180.0; lon < 180.0; lon += 0.53) {
+      const double h = terrainHeightM(earth, directionFromLatLon(lat, lon));
+      if (h < -300.0 && sea.x > 999.0) sea = {lat, lon};
+      if (h > 2.0 && h < earth.colors.beachHeightM * 0.5 && beach.x > 999.0) beach = {lat, lon};
+    }
+  ASSERT_LT(sea.x, 999.0);
+  ASSERT_LT(beach.x, 999.0);
+  Renderer renderer(context(), earth, skySettings());
+  const double h = terrainHeightM(earth, directionFromLatLon(beach.x, beach.y));
+  const Rgb water = meanColor(renderer.render({sea.x, sea.y, 300, 0, -90}, {135, 50}).image, 40, 24, 56, 40);
+  const Rgb sand = meanColor(renderer.render({beach.x, beach.y, h + 300, 0, -90}, {135, 50}).image, 44, 28, 52, 36);
+  EXPECT_LT(water.luminance() * 1.5, sand.luminance()) << water.luminance() << " vs " << sand.luminance();
+  EXPECT_GT(water.b, water.r);  // the sea is blue
+}
+
+// The airless Moon: a black sky over a sunlit ground, even by day.
+TEST_F(SkyRender, AirlessSkyStaysBlackByDay) {
+  Renderer renderer(context(), resolvePreset("moon"), skySettings());
+  const RenderResult result = renderer.render({-20, 40, 2, 0, 20}, {100, 40});
+  const Rgb sky = meanColor(result.image, 0, 0, 96, 10);
+  EXPECT_LT(sky.luminance(), 3.0);
+  const Rgb ground = meanColor(result.image, 0, 54, 96, 64);
+  EXPECT_GT(ground.luminance(), 20.0);
+}
+
+}  // namespace
+}  // namespace planet::test
