@@ -25,6 +25,10 @@ struct RenderCommand {
   double fovDeg = 60.0;
   bool wireframe = false;
   bool noPatches = false;
+  double timeS = 0.0;
+  double exposure = SkySettings{}.exposure;
+  bool noClouds = false;
+  bool noWater = false;
 };
 
 // "WxH" in pixels.
@@ -55,6 +59,13 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
   settings.fovYDeg = cmd.fovDeg;
   settings.terrain.wireframe = cmd.wireframe;
   settings.terrain.patches = !cmd.noPatches;
+  if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
+    throw UsageError(fmt::format("--time must be a number of seconds within ±1e9, got {}", cmd.timeS));
+  if (!(cmd.exposure > 0.0 && cmd.exposure <= 1e6))
+    throw UsageError(fmt::format("--exposure must be in (0, 1e6], got {}", cmd.exposure));
+  settings.sky.exposure = cmd.exposure;
+  settings.sky.clouds = !cmd.noClouds;
+  settings.terrain.water = !cmd.noWater;
   if (cmd.out.empty()) throw UsageError("--out must name a file");
   if (cmd.seed && *cmd.seed > 0xffffffffull)
     throw UsageError(fmt::format("--seed must be in 0..4294967295, got {}", *cmd.seed));
@@ -74,7 +85,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
   RenderResult result;
   {
     Renderer renderer(*context, planet, settings);
-    result = renderer.render(camera, sun);
+    result = renderer.render(camera, sun, cmd.timeS);
   }
   if (result.cameraRaised)
     std::fprintf(stderr,
@@ -115,6 +126,11 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str();
   sub->add_flag("--wireframe", cmd->wireframe, "Draw triangle edges only (debug)");
   sub->add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)");
+  sub->add_option("--time", cmd->timeS, "Animation time in seconds (cloud drift and change, waves)")
+      ->capture_default_str();
+  sub->add_option("--exposure", cmd->exposure, "HDR exposure before the tonemap")->capture_default_str();
+  sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");
+  sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
   sub->callback([&global, &exitCode, cmd] { exitCode = runRender(global, *cmd); });
 }
 
