@@ -26,6 +26,7 @@ struct GraphicsPipelineDesc {
   bool depthWrite = true;
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z: nearer is larger
   bool alphaBlend = false;                           // premultiplied-free "over" blending
+  bool additiveBlend = false;                        // ONE + ONE: light that adds up (stars)
 };
 
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);
