@@ -1,0 +1,39 @@
+// The star catalogue (issue 4, point 4): settings, their validation, and the CPU reference of
+// what stars.comp generates. The model (sphere point picking, the magnitude law, temperature and
+// colour) is in shaders/common/stars.glsl, compiled here as C++ (render/star_kernel.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shared/star_params.h"
+
+namespace planet {
+
+// Stars a real sky has brighter than `faintestMagnitude`, by the law of stars.glsl:
+// 9,000 · 10^(0.5 (faintest − 6.5)), rounded (16,005 for magnitude 7).
+uint32_t realisticStarCount(float faintestMagnitude);
+
+struct StarSettings {
+  uint32_t seed = 1;  // same seed, same catalogue (on every device and on the CPU)
+  // Stars in the catalogue, all of them fainter than magnitude −1.5 and brighter than
+  // faintestMagnitude. realisticStarCount(7) ≈ 16,000 gives the real sky's density.
+  uint32_t count = 16000;
+  float faintestMagnitude = 7.0f;  // the law's faint end; 6.5 is the naked-eye limit
+  // HDR value of a magnitude-0 star's total flux: its sprite's pixels sum to this (luminance,
+  // before any exposure), and a star of magnitude m gives brightness · 10^(−0.4 m).
+  float brightness = 1.0f;
+};
+
+inline constexpr float kStarMinFaintestMagnitude = 0.0f;
+inline constexpr float kStarMaxFaintestMagnitude = 12.0f;
+inline constexpr float kStarMaxBrightness = 1000.0f;  // keeps the brightest sprite far below half-float's 65,504
+
+// Throws planet::Error naming the first bad value: count 0 or above gpu::kStarMaxCount,
+// faintestMagnitude outside [0, 12] or not finite, brightness not in (0, 1000].
+void validateStarSettings(const StarSettings& settings);
+
+// The catalogue computed on the CPU from the same source as the GPU's (validates first).
+std::vector<gpu::StarRecord> starCatalogueCpu(const StarSettings& settings);
+
+}  // namespace planet
