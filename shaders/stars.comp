@@ -16,5 +16,5 @@ layout(std430, set = 0, binding = kStarBindingCatalogue) writeonly buffer Catalo
 void main() {
   uint index = gl_GlobalInvocationID.x;
   if (index >= params.count) return;
-  stars[index] = starGenerate(index, params.seed, params.faintestMagnitude);
+  stars[index] = starGenerate(index, params.count, params.seed, params.faintestMagnitude);
 }

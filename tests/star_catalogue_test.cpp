@@ -40,9 +40,6 @@ TEST(StarCatalogue, SameSeedGivesTheSameBytes) {
   const std::vector<StarRecord> b = catalogue(7, 5000);
   ASSERT_EQ(a.size(), 5000u);
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(StarRecord)), 0);
-  // A longer catalogue of the same seed starts with the same stars (star i depends only on i).
-  const std::vector<StarRecord> longer = catalogue(7, 6000);
-  EXPECT_EQ(std::memcmp(a.data(), longer.data(), a.size() * sizeof(StarRecord)), 0);
 }
 
 TEST(StarCatalogue, DifferentSeedsShareNoStars) {
@@ -92,6 +89,47 @@ TEST(StarCatalogue, DirectionsAreUniformOverTheSphere) {
   const double capShare = (1.0 - capCos) / 2.0;
   EXPECT_LT(std::abs(sigmas(corner, n, capShare)), 5.0);
   EXPECT_LT(std::abs(sigmas(faceCentre, n, capShare)), 5.0);
+}
+
+TEST(StarCatalogue, StarsAreOrderedBySkyTileInEqualShares) {
+  stars::StarKernel kernel;
+  for (uint32_t count : {1u, 100u, 511u, 512u, 513u, 16000u, gpu::kStarMaxCount}) {
+    ASSERT_EQ(starTileFirstIndex(0, count), 0u);
+    ASSERT_EQ(starTileFirstIndex(gpu::kStarTileCount, count), count);
+    for (uint32_t t = 0; t < gpu::kStarTileCount; ++t) {
+      const uint32_t first = starTileFirstIndex(t, count), end = starTileFirstIndex(t + 1, count);
+      ASSERT_LE(end - first, count / gpu::kStarTileCount + 1) << count << " stars, tile " << t;
+      ASSERT_GE(end - first, count / gpu::kStarTileCount) << count << " stars, tile " << t;
+      // The shader's tile of each index agrees with the CPU's table (both ends of the range).
+      if (end > first) {
+        ASSERT_EQ(kernel.starTileOf(first, count), t) << count;
+        ASSERT_EQ(kernel.starTileOf(end - 1, count), t) << count;
+      }
+    }
+  }
+}
+
+TEST(StarCatalogue, EveryStarLiesInItsTilesCap) {
+  const uint32_t n = 100000;
+  const std::vector<StarRecord> stars = catalogue(12, n);
+  for (uint32_t t = 0; t < gpu::kStarTileCount; ++t) {
+    const StarTileCap cap = starTileCap(t);
+    const uint32_t band = t / gpu::kStarTileSectors;
+    const double zTop = 1.0 - 2.0 * band / gpu::kStarTileBands, zBottom = zTop - 2.0 / gpu::kStarTileBands;
+    double farthest = 0.0;
+    for (uint32_t i = starTileFirstIndex(t, n); i < starTileFirstIndex(t + 1, n); ++i) {
+      const glm::dvec3 d(directionOf(stars[i]));
+      ASSERT_LE(d.z, zTop + 1e-6) << "tile " << t;
+      ASSERT_GE(d.z, zBottom - 1e-6) << "tile " << t;
+      farthest = std::max(farthest, std::acos(std::clamp(glm::dot(d, cap.axis), -1.0, 1.0)));
+    }
+    ASSERT_LE(farthest, cap.radiusRad) << "tile " << t;
+    // The cap is tight: its ~195 stars reach most of the way to its edge (less in the polar
+    // tiles, whose farthest point is the thin tip at the pole).
+    const bool polar = band == 0 || band == gpu::kStarTileBands - 1;
+    ASSERT_GT(farthest, (polar ? 0.6 : 0.8) * cap.radiusRad) << "tile " << t;
+  }
+  EXPECT_NE(errorOf([] { starTileCap(gpu::kStarTileCount); }).find("sky tile 512"), std::string::npos);
 }
 
 TEST(StarCatalogue, CountsFollowTheMagnitudeLawInHalfMagnitudeBins) {

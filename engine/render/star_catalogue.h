@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "shared/star_params.h"
 
 namespace planet {
@@ -23,6 +25,7 @@ struct StarSettings {
   // HDR value of a magnitude-0 star's total flux: its sprite's pixels sum to this (luminance,
   // before any exposure), and a star of magnitude m gives brightness · 10^(−0.4 m).
   float brightness = 1.0f;
+  bool cullTiles = true;  // draw only the sky tiles the view can see (off: every star, for comparisons)
 };
 
 inline constexpr float kStarMinFaintestMagnitude = 0.0f;
@@ -35,5 +38,16 @@ void validateStarSettings(const StarSettings& settings);
 
 // The catalogue computed on the CPU from the same source as the GPU's (validates first).
 std::vector<gpu::StarRecord> starCatalogueCpu(const StarSettings& settings);
+
+// Sky tiles (shared/star_params.h): the catalogue of `count` stars holds the stars of tile t at
+// indices starTileFirstIndex(t, count) .. starTileFirstIndex(t + 1, count) − 1 (t ≤ kStarTileCount).
+uint32_t starTileFirstIndex(uint32_t tile, uint32_t count);
+
+// A spherical cap around a tile: every direction of the tile is within radiusRad of axis.
+struct StarTileCap {
+  glm::dvec3 axis{0.0, 0.0, 1.0};  // unit
+  double radiusRad = 0.0;
+};
+StarTileCap starTileCap(uint32_t tile);
 
 }  // namespace planet

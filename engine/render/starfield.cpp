@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -35,6 +36,8 @@ Starfield::Starfield(vk::Context& context, const StarSettings& settings, VkForma
   VkPhysicalDeviceFeatures features{};
   vkGetPhysicalDeviceFeatures(context.physicalDevice, &features);
   maxPointSize_ = features.largePoints ? std::max(1.0f, context.properties.limits.pointSizeRange[1]) : 1.0f;
+  for (uint32_t t = 0; t < gpu::kStarTileCount; ++t) caps_.push_back(starTileCap(t));
+  for (uint32_t t = 0; t <= gpu::kStarTileCount; ++t) tileFirst_.push_back(starTileFirstIndex(t, settings.count));
   try {
     catalogue_ = vk::createBuffer(context, VkDeviceSize(settings.count) * sizeof(gpu::StarRecord),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal);
@@ -114,7 +117,39 @@ void Starfield::recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(push), &push);
-  vkCmdDraw(cmd, settings_.count, 1, 0, 0);
+  // A direction d is inside the view when w ≥ |x| and w ≥ |y| for (x, y, _, w) = M·(d, 0): four
+  // half-spaces n·d ≥ 0 with n = row w ± row x, row w ± row y. A cap of radius r around axis a
+  // reaches into {n·d ≥ 0} when the angle between a and n is below 90° + r.
+  glm::dvec3 planes[4];
+  const glm::dmat4 m(directionToClip);
+  const glm::dvec3 rowX(m[0][0], m[1][0], m[2][0]), rowY(m[0][1], m[1][1], m[2][1]), rowW(m[0][3], m[1][3], m[2][3]);
+  planes[0] = rowW + rowX;
+  planes[1] = rowW - rowX;
+  planes[2] = rowW + rowY;
+  planes[3] = rowW - rowY;
+  for (glm::dvec3& n : planes) n = glm::length(n) > 0.0 ? glm::normalize(n) : n;
+  auto visible = [&](uint32_t tile) {
+    if (!settings_.cullTiles) return true;
+    const StarTileCap& cap = caps_[tile];
+    const double reach = cap.radiusRad + kStarCullMarginRad;
+    if (reach >= 0.5 * std::numbers::pi) return true;
+    for (const glm::dvec3& n : planes)
+      if (glm::dot(n, cap.axis) < -std::sin(reach)) return false;
+    return true;
+  };
+  // One draw per run of consecutive visible tiles (the catalogue is ordered by tile).
+  drawnStars_ = 0;
+  for (uint32_t t = 0; t < gpu::kStarTileCount;) {
+    if (!visible(t)) {
+      ++t;
+      continue;
+    }
+    const uint32_t first = t;
+    while (t < gpu::kStarTileCount && visible(t)) ++t;
+    const uint32_t count = tileFirst_[t] - tileFirst_[first];
+    if (count) vkCmdDraw(cmd, count, 1, tileFirst_[first], 0);
+    drawnStars_ += count;
+  }
   if (timer) timer->end(cmd);
 }
 

@@ -25,6 +25,9 @@ namespace planet {
 // Sprite diameters (1–3 px) are meant for views up to this height; taller views scale them up
 // so that the sky looks the same at any resolution.
 inline constexpr float kStarReferenceHeightPx = 1080.0f;
+// Tiles are culled against the view's four side planes widened by this angle (1°), so that
+// float rounding in either test never drops a star the rasteriser would draw.
+inline constexpr double kStarCullMarginRad = 0.017453292519943295;
 
 class Starfield {
  public:
@@ -45,7 +48,10 @@ class Starfield {
   // Records the draw, inside an active dynamic-rendering scope with viewport and scissor set.
   // `directionToClip` maps a planet-frame direction (w = 0) to clip space: projection · view
   // rotation, with the camera's translation irrelevant. `viewportHeightPx` scales the sprites
-  // of views taller than kStarReferenceHeightPx. `timer` (optional) gets a scope "stars".
+  // of views taller than kStarReferenceHeightPx. Only the sky tiles whose caps reach into the
+  // view (with kStarCullMarginRad to spare) are drawn, unless settings.cullTiles is off; a star
+  // outside the view is clipped either way, so culling changes no pixel. `timer` (optional)
+  // gets a scope "stars".
   // Throws planet::Error before recordGenerate or for a height that is not finite and positive.
   void recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip, float viewportHeightPx, vk::GpuTimer* timer);
 
@@ -54,6 +60,8 @@ class Starfield {
   std::vector<gpu::StarRecord> readCatalogue();
 
   bool generated() const { return generated_; }
+  // Stars the last recordDraw drew (all of them when culling is off).
+  uint32_t drawnStarCount() const { return drawnStars_; }
   const StarSettings& settings() const { return settings_; }
   const vk::Buffer& catalogueBuffer() const { return catalogue_; }
   // The largest point the device draws (a sprite is its star's diameter + kStarSpriteMargin):
@@ -67,6 +75,9 @@ class Starfield {
   StarSettings settings_;
   float maxPointSize_ = 1.0f;
   bool generated_ = false;
+  uint32_t drawnStars_ = 0;
+  std::vector<StarTileCap> caps_;    // per sky tile
+  std::vector<uint32_t> tileFirst_;  // kStarTileCount + 1 catalogue indices
 
   vk::Buffer catalogue_;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;

@@ -105,15 +105,26 @@ vec2 starCosSinQuarter(float a) {
 
 // --- The star model -------------------------------------------------------------------------
 
-// Direction: sphere point picking by Archimedes' hat-box theorem: z uniform in (−1, 1] and the
+// The tile of star `index` in a catalogue of `count` (shared/star_params.h): tile t holds the
+// indices i with t · count ≤ i · kStarTileCount < (t + 1) · count, an equal share (± 1) of
+// stars, in order. The product stays below 2^32 for count ≤ kStarMaxCount.
+uint starTileOf(uint index, uint count) { return (index * kStarTileCount) / count; }
+
+// Direction: sphere point picking by Archimedes' hat-box theorem: z uniform in [−1, 1] and the
 // azimuth uniform give a uniform density on the sphere (a normalised cube point would not).
-// The azimuth's top two bits pick the quadrant, its next 24 the angle within it.
-vec3 starDirection(uint hz, uint hAzimuth) {
-  PRECISE float u = starUnit(hz);
-  PRECISE float z = 1.0f - 2.0f * u;                   // exact
-  PRECISE float rho = sqrt((1.0f - z) * (1.0f + z));  // both factors exact
-  vec2 cs = starCosSinQuarter(float((hAzimuth >> 6u) & 0xffffffu) * kStarInvTwoPow24);
-  uint quadrant = hAzimuth >> 30u;
+// Both are drawn within the star's tile (z in its band, the azimuth in its sector), so every
+// star is uniform over the sphere and the catalogue a stratified sample of it.
+STAR_CONST uint kStarSectorsPerQuadrant = kStarTileSectors / 4u;
+vec3 starDirection(uint tile, uint hz, uint hAzimuth) {
+  uint band = tile / kStarTileSectors;
+  uint sector = tile - band * kStarTileSectors;
+  PRECISE float v = (float(band) + starUnit(hz)) / float(kStarTileBands);  // [0, 1), ÷ 2^k exact
+  PRECISE float z = 1.0f - 2.0f * v;
+  PRECISE float rho = sqrt(max((1.0f - z) * (1.0f + z), 0.0f));
+  uint quadrant = sector / kStarSectorsPerQuadrant;
+  uint inQuadrant = sector - quadrant * kStarSectorsPerQuadrant;
+  PRECISE float a = (float(inQuadrant) + starUnit(hAzimuth)) / float(kStarSectorsPerQuadrant);
+  vec2 cs = starCosSinQuarter(a);
   // Rotation by quadrant · 90°: exact sign flips and swaps.
   float c = cs.x;
   float s = cs.y;
@@ -190,16 +201,16 @@ vec3 starColor(float r) {
   return vec3(max(red, 0.0f), max(green, 0.0f), max(blue, 0.0f));
 }
 
-// Star `index` of the catalogue of `seed`. Four hashes per star, chained from one that mixes
-// the index and the seed. Both are hashed before they are added, so that two seeds give
-// unrelated catalogues instead of the same stars at shifted indices, and the seed is offset
-// first (by 2^32 / φ) so that star i of seed s is not star s of seed i.
-StarRecord starGenerate(uint index, uint seed, float faintestMagnitude) {
+// Star `index` of the catalogue of `count` stars of `seed`. Four hashes per star, chained from
+// one that mixes the index and the seed. Both are hashed before they are added, so that two
+// seeds give unrelated catalogues instead of the same stars at shifted indices, and the seed is
+// offset first (by 2^32 / φ) so that star i of seed s is not star s of seed i.
+StarRecord starGenerate(uint index, uint count, uint seed, float faintestMagnitude) {
   uint h0 = starHash(starHash(index) + starHash(seed ^ 0x9e3779b9u));
   uint h1 = starHash(h0);
   uint h2 = starHash(h1);
   uint h3 = starHash(h2);
-  vec3 direction = starDirection(h0, h1);
+  vec3 direction = starDirection(starTileOf(index, count), h0, h1);
   float magnitude = starMagnitude(h2, faintestMagnitude);
   float r = starReciprocalTemperature(h3);
   PRECISE float temperature = 1000.0f / r;

@@ -12,6 +12,14 @@ GPU_CONST uint kStarBindingCatalogue = 0u;  // StarRecord[count] (set 0, compute
 GPU_CONST uint kStarWorkgroupSize = 64u;
 GPU_CONST uint kStarMaxCount = 1048576u;  // 2^20 stars, 32 MiB: a real sky to magnitude ~11.7
 
+// Sky tiles: kStarTileBands bands of equal height in z (equal area, by the hat-box theorem)
+// times kStarTileSectors azimuth sectors. The catalogue is ordered by tile, each holding an
+// equal share of the stars, so a draw can skip the tiles outside the view (lavapipe shades
+// vertices at ~0.5 µs each, on one thread).
+GPU_CONST uint kStarTileBands = 16u;
+GPU_CONST uint kStarTileSectors = 32u;  // a multiple of 4: whole sectors per quadrant
+GPU_CONST uint kStarTileCount = kStarTileBands * kStarTileSectors;
+
 // The star model (shaders/common/stars.glsl has the reasons).
 GPU_CONST float kStarBrightestMagnitude = -1.5f;  // brighter magnitudes drawn are clamped to this (Sirius: −1.46)
 GPU_CONST float kStarMinTemperatureK = 3000.0f;
