@@ -18,7 +18,7 @@ uint32_t realisticStarCount(float faintestMagnitude);
 
 struct StarSettings {
   uint32_t seed = 1;  // same seed, same catalogue (on every device and on the CPU)
-  // Stars in the catalogue, all of them fainter than magnitude −1.5 and brighter than
+  // Stars in the catalogue, all of them between magnitude −1.5 (the clamp) and
   // faintestMagnitude. realisticStarCount(7) ≈ 16,000 gives the real sky's density.
   uint32_t count = 16000;
   float faintestMagnitude = 7.0f;  // the law's faint end; 6.5 is the naked-eye limit
