@@ -182,7 +182,8 @@ void main() {
     // Background: stars (drawn first, where nothing covered them) fade out as the sky in
     // front of them brightens on the display, as the eye would lose them.
     float skyDisplay = luminance(inscatter) * sky.camera.z;
-    float starFade = 1.0f - smoothstep(0.01f, 0.08f, skyDisplay);
+    // (A clear noon sky is ~0.07 here, civil twilight ~0.002.)
+    float starFade = 1.0f - smoothstep(0.001f, 0.01f, skyDisplay);
     result = surface * transmittance * starFade + inscatter;
     if (!seesGround) {
       float sunRadius = a.radii.z;

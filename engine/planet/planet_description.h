@@ -103,7 +103,7 @@ struct StarDescription {
   bool enabled = true;
   uint32_t seed = 1;
   double faintestMagnitude = 7.0;  // stars down to this apparent magnitude
-  double brightness = 1.0;         // scales every star (1: a magnitude-0 star as in the docs)
+  double brightness = 0.4;         // HDR flux of a magnitude-0 star (engine/render/star_catalogue.h)
 };
 
 struct PlanetDescription {
@@ -155,7 +155,7 @@ inline constexpr Range kCloudOpacityRange{0.0, 100.0};
 inline constexpr Range kClarityRangeM{0.1, 1e4};
 inline constexpr Range kWaveWavelengthRangeM{0.01, 1e4};
 inline constexpr Range kWaveSlopeRange{0.0, 1.0};
-inline constexpr Range kMagnitudeRange{-1.0, 9.0};
+inline constexpr Range kMagnitudeRange{0.0, 9.0};
 inline constexpr Range kStarBrightnessRange{0.0, 1e3};
 inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
 inline constexpr size_t kMaxNameBytes = 64;         // planet and layer names

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "planet/terrain_height.h"
 #include "render/sky_tables.h"
+#include "render/starfield.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 
@@ -38,6 +39,14 @@ Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const 
     skyTables_ = std::make_unique<SkyTables>(context, planet);
     terrain_ = std::make_unique<TerrainPass>(context, planet, settings.terrain, kHdrFormat, kDepthFormat, *skyTables_);
     sky_ = std::make_unique<SkyPass>(context, planet, *skyTables_, settings.sky, kColorFormat);
+    if (planet.stars.enabled && planet.stars.brightness > 0.0) {
+      StarSettings stars;
+      stars.seed = planet.stars.seed;
+      stars.faintestMagnitude = float(planet.stars.faintestMagnitude);
+      stars.count = realisticStarCount(stars.faintestMagnitude);
+      stars.brightness = float(planet.stars.brightness);
+      stars_ = std::make_unique<Starfield>(context, stars, kHdrFormat, kDepthFormat);
+    }
     const VkExtent2D extent{settings.width, settings.height};
     hdr_ = vk::createImage2D(context, extent, kHdrFormat,
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
@@ -63,6 +72,7 @@ void Renderer::release() {
   vk::destroyImage(context_, depth_);
   vk::destroyImage(context_, color_);
   vk::destroyImage(context_, hdr_);
+  stars_.reset();
   sky_.reset();
   terrain_.reset();
   skyTables_.reset();
@@ -132,12 +142,15 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, d
   skyView.timeS = timeS;
   skyView.pixelAngleRad = view.fovYRad / double(view.height);
   sky_->prepare(skyView, settings_.width, settings_.height);
+  // Stars are fixed in the planet frame: planet direction → local → clip.
+  const glm::mat4 starsToClip = glm::mat4(skyView.viewProjection * glm::dmat4(planetToLocal));
 
   const VkExtent2D extent{settings_.width, settings_.height};
   vk::GpuTimer* timer = timerCreated_ ? &timer_ : nullptr;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
     if (timer) timer->reset(cmd);
     skyTables_->recordBuild(cmd, timer);
+    if (stars_) stars_->recordGenerate(cmd, timer);
     terrain_->recordCompute(cmd, timer);
     // Earlier contents are discarded: the frame clears the HDR target and the depth.
     hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -152,6 +165,8 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, d
     const VkRenderingAttachmentInfo depthAttachment =
         clearedAttachment(depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
     beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
+    // Stars first, at infinity; everything drawn later covers them.
+    if (stars_) stars_->recordDraw(cmd, starsToClip, float(settings_.height), timer);
     terrain_->recordDraw(cmd, timer);
     vkCmdEndRendering(cmd);
     // The compose pass reads and writes the HDR colour and samples the depth.

@@ -50,6 +50,7 @@ struct RenderResult {
 };
 
 class SkyTables;
+class Starfield;
 
 class Renderer {
  public:
@@ -80,6 +81,7 @@ class Renderer {
   std::unique_ptr<SkyTables> skyTables_;
   std::unique_ptr<TerrainPass> terrain_;
   std::unique_ptr<SkyPass> sky_;
+  std::unique_ptr<Starfield> stars_;  // null when the preset turns the stars off
   vk::Image hdr_;
   vk::Image color_;
   vk::Image depth_;

@@ -7,6 +7,8 @@
 namespace planet::vk {
 
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
+  if (desc.alphaBlend && desc.additiveBlend)
+    throw Error("a graphics pipeline blends either alpha or additively, not both");
   VkShaderModule vertex = createShaderModule(context, desc.vertexSpirv);
   VkShaderModule fragment = VK_NULL_HANDLE;
   try {
@@ -52,6 +54,14 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
     attachment.colorBlendOp = VK_BLEND_OP_ADD;
     attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
     attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  } else if (desc.additiveBlend) {
+    attachment.blendEnable = VK_TRUE;
+    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.colorBlendOp = VK_BLEND_OP_ADD;
+    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
   }
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

@@ -27,6 +27,7 @@ struct GraphicsPipelineDesc {
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z: nearer is larger
   bool alphaBlend = false;                           // "over" blending: src·α + dst·(1 − α)
   bool premultipliedAlpha = false;                   // with alphaBlend: src + dst·(1 − α) (colour already weighted)
+  bool additiveBlend = false;                        // ONE + ONE: light that adds up (stars)
 };
 
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);
