@@ -1,11 +1,13 @@
 // The CPU reference of the atmosphere (engine/render/atmosphere_model.h): closed forms where
 // they exist, and the physical expectations of a clear Earth sky.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "planet/planet_description.h"
 #include "render/atmosphere_model.h"
+#include "render/sky_tables.h"
 
 namespace planet {
 namespace {
@@ -88,6 +90,22 @@ TEST(AtmosphereModel, SkyIrradianceGrowsWithSunElevationAndVanishesAtNight) {
   EXPECT_GT(high.b, 0.03f);
   EXPECT_LT(high.b, 0.4f);
   EXPECT_GT(high.b, high.r);
+}
+
+// Seed 001 eq. 4.2: the three cover images' weights always sum to 1, and the layer drifts at
+// the wind speed.
+TEST(CloudMotion, WeightsSumToOneAndTheLayerDriftsWithTheWind) {
+  CloudDescription clouds;
+  clouds.windMps = 10.0;
+  clouds.evolvePeriodS = 1000.0;
+  for (double t : {0.0, 123.0, 500.0, 999.0, 1e6}) {
+    const CloudMotion m = cloudMotion(clouds, 6.371e6, t);
+    EXPECT_NEAR(m.weights.x + m.weights.y + m.weights.z, 1.0, 1e-6) << t;
+    EXPECT_GE(std::min({m.weights.x, m.weights.y, m.weights.z}), 0.0f);
+  }
+  EXPECT_FLOAT_EQ(cloudMotion(clouds, 6.371e6, 0.0).weights.x, 2.0f / 3.0f);
+  const double layerRadius = 6.371e6 + 0.5 * (clouds.bottomM + clouds.topM);
+  EXPECT_NEAR(cloudMotion(clouds, 6.371e6, 3600.0).driftRad, 10.0 * 3600.0 / layerRadius, 1e-6);
 }
 
 }  // namespace

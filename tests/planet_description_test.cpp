@@ -236,6 +236,7 @@ TEST(PlanetDescription, PresetSkiesDiffer) {
   EXPECT_TRUE(mars.atmosphere.enabled);
   EXPECT_FALSE(mars.clouds.enabled || mars.hasOcean);
   EXPECT_GT(mars.atmosphere.mieScattering.r, mars.atmosphere.mieScattering.b);  // reddish dust
+  EXPECT_GT(mars.atmosphere.mieAbsorption.b, mars.atmosphere.mieAbsorption.r);  // that absorbs blue
   EXPECT_FALSE(moon.atmosphere.enabled || moon.clouds.enabled || moon.hasOcean);
   EXPECT_TRUE(moon.stars.enabled);
 }

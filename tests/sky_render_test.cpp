@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/terrain_height.h"
 #include "render/atmosphere_model.h"
@@ -202,6 +203,38 @@ TEST_F(SkyRender, OceanIsDarkerThanBeach) {
   const Rgb sand = meanColor(renderer.render({beach.x, beach.y, h + 300, 0, -90}, {135, 50}).image, 44, 28, 52, 36);
   EXPECT_LT(water.luminance() * 1.5, sand.luminance()) << water.luminance() << " vs " << sand.luminance();
   EXPECT_GT(water.b, water.r);  // the sea is blue
+}
+
+// White, unsaturated pixels: clouds (the clear sky is blue, the ground darker).
+double cloudyFraction(const Rgba8Image& image) {
+  size_t white = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 4) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    white += (std::min({r, g, b}) > 170 && std::max({r, g, b}) - std::min({r, g, b}) < 40) ? 1 : 0;
+  }
+  return double(white) / double(image.pixels.size() / 4);
+}
+
+TEST_F(SkyRender, CloudsAreSeenFromAboveAndBelowAndDriftWithTime) {
+  RenderSettings settings = skySettings();
+  settings.width = 160;
+  settings.height = 90;
+  const PlanetDescription earth = resolvePreset("earth");
+  Renderer cloudy(context(), earth, settings);
+  Renderer clear(context(), clearEarth(), settings);
+  const CameraPose below{20, -30, 2, 315, 55};     // from the sea, looking up, away from the sun
+  const CameraPose above{20, -30, 1.5e4, 0, -60};  // from 15 km, looking down
+  const SunPose sun{135, 50};
+  EXPECT_GT(cloudyFraction(cloudy.render(below, sun).image), 0.05);
+  EXPECT_LT(cloudyFraction(clear.render(below, sun).image), 0.005);
+  EXPECT_GT(cloudyFraction(cloudy.render(above, sun).image), 0.05);
+  EXPECT_LT(cloudyFraction(clear.render(above, sun).image), 0.005);
+  // Half an hour later the layer has moved (looking up, nothing else depends on the time).
+  const Rgba8Image now = cloudy.render(below, sun, 0.0).image;
+  const Rgba8Image later = cloudy.render(below, sun, 1800.0).image;
+  EXPECT_GT(psnrRgb(now, later), 0.0);
+  EXPECT_LT(psnrRgb(now, later), 30.0);
+  EXPECT_EQ(clear.render(below, sun, 0.0).image.pixels, clear.render(below, sun, 1800.0).image.pixels);
 }
 
 // The airless Moon: a black sky over a sunlit ground, even by day.

@@ -2,8 +2,9 @@
 # Renders the README gallery into a folder (default docs/gallery):
 #   - seed 002's Figures 5.1-5.4 equivalents: one fBm, cascade, hybrid and ridged planet each,
 #     shaded by height only (tools/gallery/*.toml), from orbit and from 600 km;
-#   - a descent on the default planet: orbit -> 100 km -> 1 km -> 2 m, at noon and at a low sun;
-#   - the moon preset from orbit and from the ground.
+#   - a descent on the default planet: orbit -> 100 km -> 10 km -> 1 km -> 2 m, at noon, at
+#     sunset and at night (sky, clouds, water and stars: issue 4);
+#   - the moon and mars presets from the ground, the moon from orbit.
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
 out=${1:-docs/gallery}
@@ -23,9 +24,14 @@ done
 # Descent over a coast of the default planet (earth): positions chosen from `planet height`.
 render descent_1_orbit --camera 30,-95,1.2e7 --sun 150,45
 render descent_2_100km --camera 33.8,-90,1e5,0,-30 --sun 150,35
-render descent_3_1km --camera 33.8,-90,3500,0,-12 --sun 150,35
-render descent_4_2m --camera 33.8,-90,0,60,-8 --sun 150,35
-render descent_5_2m_low_sun --camera 33.8,-90,0,60,-8 --sun 230,6
+render descent_3_10km --camera 33.8,-90,1e4,0,-12 --sun 150,35
+render descent_4_1km --camera 33.8,-90,3500,0,-12 --sun 150,35
+render descent_5_2m --camera 33.8,-90,0,60,-8 --sun 150,35
+render descent_6_2m_sunset --camera 33.8,-90,0,60,2 --sun 60,3
+render sea_2m_noon --camera 20,-30,2,90,5 --sun 135,50
+render sea_2m_sunset --camera 20,-30,2,135,3 --sun 135,1
+render night_2m --camera 33.8,-90,0,60,25 --sun 60,-12
 render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
 render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
+render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30
 echo "gallery: done ($out)"

@@ -19,9 +19,16 @@ namespace planet {
 namespace {
 
 constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer", "atmosphere", "clouds", "water", "stars"};
-constexpr std::string_view kAtmosphereKeys[] = {"height_m",       "rayleigh_scattering",  "rayleigh_scale_height_m",
-                                                "mie_scattering", "mie_extinction_ratio", "mie_scale_height_m",
-                                                "mie_g",          "ozone_absorption",     "ozone_center_m",
+constexpr std::string_view kAtmosphereKeys[] = {"height_m",
+                                                "rayleigh_scattering",
+                                                "rayleigh_scale_height_m",
+                                                "mie_scattering",
+                                                "mie_extinction_ratio",
+                                                "mie_absorption",
+                                                "mie_scale_height_m",
+                                                "mie_g",
+                                                "ozone_absorption",
+                                                "ozone_center_m",
                                                 "ozone_width_m"};
 constexpr std::string_view kCloudKeys[] = {"bottom_m", "top_m", "coverage", "sharpness",       "wavelength_m",
                                            "octaves",  "seed",  "wind_mps", "evolve_period_s", "opacity"};
@@ -330,6 +337,7 @@ AtmosphereDescription readAtmosphere(const Context& context, const toml::table& 
       reader.number("rayleigh_scale_height_m", kScaleHeightRangeM).value_or(a.rayleighScaleHeightM);
   a.mieScattering = reader.vector3("mie_scattering", kScatteringRange, true).value_or(a.mieScattering);
   a.mieExtinctionRatio = reader.number("mie_extinction_ratio", kMieExtinctionRatioRange).value_or(a.mieExtinctionRatio);
+  a.mieAbsorption = reader.vector3("mie_absorption", kScatteringRange, true).value_or(a.mieAbsorption);
   a.mieScaleHeightM = reader.number("mie_scale_height_m", kScaleHeightRangeM).value_or(a.mieScaleHeightM);
   a.mieG = reader.number("mie_g", kMieGRange).value_or(a.mieG);
   a.ozoneAbsorption = reader.vector3("ozone_absorption", kScatteringRange, true).value_or(a.ozoneAbsorption);
@@ -604,11 +612,13 @@ std::string canonicalForm(const PlanetDescription& d) {
   out += fmt::format(
       "atmosphere={}\natmosphere.height_m={}\natmosphere.rayleigh_scattering={}\n"
       "atmosphere.rayleigh_scale_height_m={}\natmosphere.mie_scattering={}\natmosphere.mie_extinction_ratio={}\n"
+      "atmosphere.mie_absorption={}\n"
       "atmosphere.mie_scale_height_m={}\natmosphere.mie_g={}\natmosphere.ozone_absorption={}\n"
       "atmosphere.ozone_center_m={}\natmosphere.ozone_width_m={}\n",
       a.enabled, formatNumber(a.heightM), vector(a.rayleighScattering), formatNumber(a.rayleighScaleHeightM),
-      vector(a.mieScattering), formatNumber(a.mieExtinctionRatio), formatNumber(a.mieScaleHeightM),
-      formatNumber(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM), formatNumber(a.ozoneWidthM));
+      vector(a.mieScattering), formatNumber(a.mieExtinctionRatio), vector(a.mieAbsorption),
+      formatNumber(a.mieScaleHeightM), formatNumber(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM),
+      formatNumber(a.ozoneWidthM));
   const CloudDescription& cl = d.clouds;
   out += fmt::format(
       "clouds={}\nclouds.bottom_m={}\nclouds.top_m={}\nclouds.coverage={}\nclouds.sharpness={}\n"

@@ -68,6 +68,7 @@ struct AtmosphereDescription {
   double rayleighScaleHeightM = 8'000.0;
   glm::dvec3 mieScattering{21e-6, 21e-6, 21e-6};  // β_M (grey for Earth; coloured dust for Mars)
   double mieExtinctionRatio = 1.11;               // Mie extinction / scattering (aerosols absorb a little)
+  glm::dvec3 mieAbsorption{0.0, 0.0, 0.0};        // extra, coloured absorption by aerosols (Mars dust eats blue)
   double mieScaleHeightM = 1'200.0;
   double mieG = 0.76;                         // Cornette-Shanks asymmetry: forward scattering
   glm::dvec3 ozoneAbsorption{0.0, 0.0, 0.0};  // at the layer's peak; Earth: 0.65, 1.881, 0.085 ·10⁻⁶

@@ -66,7 +66,7 @@ AtmosphereParams makeAtmosphereParams(const PlanetDescription& planet) {
   }
   p.rayleigh = glm::vec4(glm::vec3(a.rayleighScattering), float(1.0 / a.rayleighScaleHeightM));
   p.mieScattering = glm::vec4(glm::vec3(a.mieScattering), float(1.0 / a.mieScaleHeightM));
-  p.mieExtinction = glm::vec4(glm::vec3(a.mieScattering * a.mieExtinctionRatio), float(a.mieG));
+  p.mieExtinction = glm::vec4(glm::vec3(a.mieScattering * a.mieExtinctionRatio + a.mieAbsorption), float(a.mieG));
   p.ozone = glm::vec4(glm::vec3(a.ozoneAbsorption), float(a.ozoneCenterM));
   return p;
 }
