@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "noise/noise_settings.h"
 #include "render/sky_tables.h"
 #include "spv/sky.comp.h"
 #include "spv/tonemap.frag.h"
@@ -34,15 +35,11 @@ float uintBitsAsFloat(uint32_t bits) {
   return f;
 }
 
-// noise.glsl's noiseSeedMix (the detail noise's seed is mixed once, here).
-uint32_t seedMix(uint32_t seed) {
-  uint32_t h = seed ^ 0x9e3779b9u;
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return h;
+// The detail noise's seed, mixed once here as the noise code would (noise_settings.h).
+uint32_t detailSeedMix(uint32_t seed) {
+  noise::NoiseSettings settings;
+  settings.seed = seed + 99u;
+  return noise::toNoiseParams(settings).seedMix;
 }
 
 }  // namespace
@@ -143,7 +140,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height) {
   // Detail noise: 3 octaves from 12 km down, finer than the cover images' texels.
   const double detailWavelengthM = 12'000.0;
   u.cloudShape =
-      glm::vec4(float(c.opacity), float(1.0 / detailWavelengthM), 0.12f, uintBitsAsFloat(seedMix(c.seed + 99u)));
+      glm::vec4(float(c.opacity), float(1.0 / detailWavelengthM), 0.12f, uintBitsAsFloat(detailSeedMix(c.seed)));
   const CloudMotion motion = cloudMotion(c, planet_.radiusM, view.timeS);
   u.cloudMotion = glm::vec4(motion.weights, motion.driftRad);
   for (int k = 0; k < kSkyIrradianceSamples; ++k) u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)];
