@@ -372,55 +372,5 @@ TEST_F(StarfieldGpu, TileCullingChangesNoPixelAndSkipsMostStars) {
   }
 }
 
-TEST_F(StarfieldGpu, GenerationAndDrawTimes) {
-  // Lavapipe takes a timestamp by binning it into its rasteriser's scene once the context has
-  // rendered anything, so a compute scope recorded after any rendering reads ~0. The
-  // generations are therefore timed first, each in a submission of its own (wall time beside).
-  // Medians of three.
-  std::vector<double> generate, generateMax, wall, wallMax;
-  StarSettings maxStars;
-  maxStars.count = gpu::kStarMaxCount;
-  for (int run = 0; run < 3; ++run) {
-    for (const StarSettings& settings : {StarSettings{}, maxStars}) {
-      Starfield starfield(context(), settings, kColorFormat, kDepthFormat);
-      vk::GpuTimer timer;
-      timer.create(context(), 2);
-      const auto start = std::chrono::steady_clock::now();
-      vk::submitAndWait(context(), [&](VkCommandBuffer cmd) {
-        timer.reset(cmd);
-        starfield.recordGenerate(cmd, &timer);
-      });
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      const bool isMax = settings.count == maxStars.count;
-      (isMax ? generateMax : generate).push_back(timer.results(context())[0].milliseconds);
-      (isMax ? wallMax : wall).push_back(ms);
-      timer.destroy(context());
-    }
-  }
-  // Draws at 960×540 with and without tile culling, and of a 5° view (~120 stars drawn) as the
-  // floor: on lavapipe the scope also holds the rasterisation of the target's clear.
-  std::vector<double> draw, drawAll, drawFloor;
-  StarSettings all;
-  all.cullTiles = false;
-  Starfield culled(context(), StarSettings{}, kColorFormat, kDepthFormat);
-  Starfield unculled(context(), all, kColorFormat, kDepthFormat);
-  const glm::mat4 toClip = directionToClip(kForward, 60.0, 960.0 / 540.0);
-  const glm::mat4 narrow = directionToClip(kForward, 5.0, 960.0 / 540.0);
-  for (int run = 0; run < 3; ++run) {
-    draw.push_back(timingOf(renderStars(context(), culled, 960, 540, toClip), "stars"));
-    drawAll.push_back(timingOf(renderStars(context(), unculled, 960, 540, toClip), "stars"));
-    drawFloor.push_back(timingOf(renderStars(context(), culled, 960, 540, narrow), "stars"));
-  }
-  for (std::vector<double>* v : {&generate, &generateMax, &wall, &wallMax, &draw, &drawAll, &drawFloor})
-    std::sort(v->begin(), v->end());
-  std::printf(
-      "%s, medians of 3:\n  catalogue of 16,000 stars %.3f ms (wall %.3f), of %u stars %.3f ms (wall %.3f)\n"
-      "  draw at 960x540: %.3f ms with tile culling, %.3f ms without, %.3f ms for a 5-degree view\n",
-      context().info.name.c_str(), generate[1], wall[1], gpu::kStarMaxCount, generateMax[1], wallMax[1], draw[1],
-      drawAll[1], drawFloor[1]);
-  EXPECT_GE(generate[1], 0.0);
-  EXPECT_GE(draw[1], 0.0);
-}
-
 }  // namespace
 }  // namespace planet::test
