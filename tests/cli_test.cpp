@@ -124,6 +124,17 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"", "", "a command is required"},
       {"bench", "", "a command is required"},
       {"bench frobnicate", "", "frobnicate"},
+      {"bench --frames 0", "", "--frames must be in 1..100000, got 0"},
+      {"bench --frames -5", "", "--frames must be in 1..100000, got -5"},
+      {"bench --warmup -1", "", "--warmup must be in 0..10000, got -1"},
+      {"bench --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"bench --size wide", "", "--size expects WIDTHxHEIGHT in pixels, got 'wide'"},
+      {"bench --fov 180", "", "--fov must be in (0, 179] degrees, got 180"},
+      {"bench --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"bench --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
+      {"bench --json ''", "", "--json must name a file"},
+      {"bench --sun 0,95", "", "sun elevation 95 is outside [-90, 90] degrees"},
+      {"bench noise --frames 3", "", "--frames belongs to the frame benchmark"},
   };
   for (const Case& c : cases) {
     CommandResult run = planet(c.args, c.input);
@@ -234,6 +245,109 @@ TEST(Cli, BenchNoiseReportsEveryMethodInJson) {
   }
   EXPECT_EQ(methods, (std::set<std::string>{"gpu_fast", "gpu_reference", "cpu_1", "cpu_all", "libnoise_perlin",
                                             "libnoise_ridged"}));
+}
+
+// A short path high above the earth preset: few octaves per vertex, so that even the
+// vertex-shader variant of --compare takes well under a second per frame on lavapipe.
+std::filesystem::path shortPath() {
+  std::filesystem::path path = tempDir() / "orbit_path.txt";
+  std::ofstream(path) << "# time_s lat lon height_m heading pitch\n0 20 -30 2e7 0 -90\n1 21 -29 1e7 10 -80\n";
+  return path;
+}
+
+TEST(Cli, BenchPathErrorsNameTheFileTheLineAndTheValue) {
+  const std::filesystem::path path = tempDir() / "bad_path.txt";
+  std::ofstream(path) << "0 20 -30 2e7 0 -90\n# fine so far\n1 21 -29 1e7 10 -95\n";
+  CommandResult run = planet("bench --path " + path.string());
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_EQ(lineCount(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find(path.string() + ":3: pitch_deg -95 is outside [-90, 90]"), std::string::npos) << run.err;
+  EXPECT_EQ(run.out, "");
+}
+
+TEST(Cli, BenchPrintsTheDefaultPathInTheFileFormat) {
+  CommandResult run = planet("bench --print-path");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(run.out.substr(0, 2), "# ");
+  EXPECT_NE(run.out.find("\n0 33.8 -90 40000000 0 -90\n"), std::string::npos) << run.out;
+  const std::filesystem::path copy = tempDir() / "default_path.txt";
+  std::ofstream(copy) << run.out;
+  EXPECT_EQ(planet("bench --print-path --path " + copy.string()).out, run.out);
+}
+
+TEST(Cli, BenchReportsEveryFieldWithConsistentTimesAndCompareRatios) {
+  const std::filesystem::path json = tempDir() / "frames.json";
+  const std::filesystem::path csv = tempDir() / "frames.csv";
+  CommandResult run = planet("bench --size 96x64 --frames 3 --warmup 1 --no-patches --compare --path " +
+                             shortPath().string() + " --json " + json.string() + " --csv " + csv.string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("device: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("frames per second"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("bench: vertex_shader, timed frame 1 of 3"), std::string::npos) << run.err;
+
+  nlohmann::json j = nlohmann::json::parse(readFile(json));
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
+  EXPECT_FALSE(j["driver"].get<std::string>().empty());
+  EXPECT_EQ(j["width"].get<int>(), 96);
+  EXPECT_EQ(j["height"].get<int>(), 64);
+  EXPECT_EQ(j["frames"].get<int>(), 3);
+  EXPECT_EQ(j["preset_hash"].get<std::string>().size(), 16u);
+  auto checkSummary = [](const nlohmann::json& s, const std::string& what) {
+    for (const char* key : {"median", "p95", "p99", "max"}) EXPECT_GT(s.at(key).get<double>(), 0.0) << what << key;
+    EXPECT_LE(s["median"].get<double>(), s["p95"].get<double>()) << what;
+    EXPECT_LE(s["p95"].get<double>(), s["p99"].get<double>()) << what;
+    EXPECT_LE(s["p99"].get<double>(), s["max"].get<double>()) << what;
+  };
+  checkSummary(j["frame_ms"], "frame_ms ");
+  checkSummary(j["gpu_ms"], "gpu_ms ");
+  checkSummary(j["terrain_ms"], "terrain_ms ");
+  for (const char* pass : {"heights", "terrain"}) checkSummary(j["passes"][pass], pass);
+  EXPECT_GT(j["fps"].get<double>(), 0.0);
+  EXPECT_GT(j["nadir_m_per_vertex_min"].get<double>(), 0.0);
+  EXPECT_GT(j["triangles_median"].get<int64_t>(), 0);
+  for (const char* mode : {"vertex_shader", "cpu", "octaves_off"}) {
+    ASSERT_TRUE(j["compare"].contains(mode)) << mode;
+    EXPECT_GT(j["compare"][mode].get<double>(), 0.0) << mode;
+    checkSummary(j["modes"][mode]["terrain_ms"], mode);
+  }
+  ASSERT_EQ(j["per_frame"].size(), 3u);
+  for (const auto& f : j["per_frame"]) {
+    double sum = 0.0;
+    for (const auto& [name, ms] : f["passes"].items()) {
+      EXPECT_GT(ms.get<double>(), 0.0) << name;
+      sum += ms.get<double>();
+    }
+    // Passes run one after another inside the frame's first-to-last timestamp span, and the
+    // wall-clock frame contains that span.
+    EXPECT_LE(sum, f["gpu_ms"].get<double>() + 1e-6) << f.dump();
+    EXPECT_LE(f["gpu_ms"].get<double>(), f["frame_ms"].get<double>()) << f.dump();
+    EXPECT_GT(f["triangles"].get<int64_t>(), 0);
+    EXPECT_GT(f["vertices_evaluated"].get<int64_t>(), 0);
+    EXPECT_GT(f["m_per_vertex_nadir"].get<double>(), 0.0);
+  }
+  // The CSV: a header and one row per timed frame of each of the four modes.
+  const std::string table = readFile(csv);
+  EXPECT_EQ(lineCount(table), 1u + 4u * 3u);
+  EXPECT_EQ(table.substr(0, table.find(',')), "mode");
+  EXPECT_NE(table.find("pass_heights_ms"), std::string::npos);
+}
+
+TEST(Cli, BenchPlotIsAPngOrAOneLineErrorAboutMatplotlib) {
+  const std::filesystem::path png = tempDir() / "frames.png";
+  CommandResult run = planet("bench --size 32x18 --frames 2 --warmup 0 --no-patches --path " + shortPath().string() +
+                             " --plot " + png.string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  if (run.exitCode == 0) {
+    EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
+  } else {
+    // No Python with matplotlib: said before the benchmark runs, in one line, nothing written.
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(lineCount(run.err), 1u) << run.err;
+    EXPECT_NE(run.err.find("matplotlib"), std::string::npos) << run.err;
+    EXPECT_EQ(run.out, "");
+    EXPECT_FALSE(std::filesystem::exists(png));
+  }
 }
 
 TEST(Cli, UnwritableJsonPathFailsWithoutLeavingFiles) {

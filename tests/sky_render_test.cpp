@@ -99,8 +99,9 @@ TEST_F(SkyRender, TransmittanceTableMatchesCpuReference) {
     for (int c = 0; c < 3; ++c)
       depth[c] = p.rayleigh[c] * a.rayleighScaleHeightM * (1.0 - std::exp(-a.heightM / a.rayleighScaleHeightM)) +
                  p.mieExtinction[c] * a.mieScaleHeightM * (1.0 - std::exp(-a.heightM / a.mieScaleHeightM));
-    if (a.ozoneAbsorption == glm::dvec3(0.0))
+    if (a.ozoneAbsorption == glm::dvec3(0.0)) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(table[0][c], std::exp(-depth[c]), 2e-3) << preset << " channel " << c;
+    }
   }
 }
 

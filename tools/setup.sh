@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 
 # Compiler and build; Vulkan loader, lavapipe (Vulkan on the CPU) and the validation layers;
 # glslang for GLSL -> SPIR-V at build time; libraries; GoogleTest; libnoise (the peer noise
-# library `planet bench noise` compares against); stb (PNG files for renders and golden images).
+# library `planet bench noise` compares against); stb (PNG files for renders and golden images);
+# matplotlib (the frame-time plot of `planet bench --plot`, drawn by python3).
 packages=(
   build-essential cmake ninja-build
   libvulkan-dev mesa-vulkan-drivers
@@ -18,6 +19,7 @@ packages=(
   libgtest-dev
   libnoise-dev
   libstb-dev
+  python3-matplotlib
 )
 
 missing=()

@@ -2,7 +2,9 @@
 // and the exit codes.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -41,6 +43,9 @@ void printOnePerLine(const Range& values, std::string_view format) {
   std::fwrite(out.data(), 1, out.size(), stdout);
 }
 
+// "WxH" in pixels for --size: both in 1..kRenderMaxSize, else UsageError naming the text.
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
+
 // A bad value the user gave (flag or input line): printed as one line, exit code 2.
 class UsageError : public std::runtime_error {
  public:
@@ -51,6 +56,11 @@ class UsageError : public std::runtime_error {
 void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+// The frame-time benchmark's options on `planet bench` itself (cmd_bench_frames.cpp): with any of
+// them given and no benchmark command, `planet bench` runs it. Returns a check for the benchmark
+// commands to call first: it throws UsageError when one of those options was given too.
+std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& bench, const GlobalOptions& global,
+                                                                     int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 

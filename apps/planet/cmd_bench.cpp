@@ -1,4 +1,6 @@
-// planet bench noise: throughput of the GPU noise against the CPU reference and libnoise.
+// planet bench: the frame-time benchmark's options (cmd_bench_frames.cpp) and the benchmark
+// commands; planet bench noise: throughput of the GPU noise against the CPU reference and
+// libnoise.
 #include <unistd.h>
 
 #include <cstdio>
@@ -44,8 +46,12 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
 }  // namespace
 
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks (print medians and spreads with the device name)");
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "Benchmarks (print medians and spreads with the device name): with any of the options below, frame times "
+      "along a camera path; or a benchmark command");
   bench->require_subcommand(0, 1);
+  auto rejectFrameOptions = addFrameBenchOptions(*bench, global, exitCode);
   auto cmd = std::make_shared<BenchNoiseCommand>();
   CLI::App* sub = bench->add_subcommand(
       "noise",
@@ -56,7 +62,10 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")
       ->capture_default_str();
   sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
-  sub->callback([&global, &exitCode, cmd] { exitCode = runBenchNoise(global, *cmd); });
+  sub->callback([&global, &exitCode, cmd, rejectFrameOptions] {
+    rejectFrameOptions("noise");
+    exitCode = runBenchNoise(global, *cmd);
+  });
 }
 
 }  // namespace planet::cli

@@ -1,5 +1,4 @@
 // planet render: one frame of a preset, offscreen (lavapipe or GPU), written to a PNG.
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -30,20 +29,6 @@ struct RenderCommand {
   bool noClouds = false;
   bool noWater = false;
 };
-
-// "WxH" in pixels.
-void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
-  const size_t x = text.find('x');
-  auto number = [&](std::string_view part, uint32_t& value) {
-    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-    return !part.empty() && ec == std::errc() && ptr == part.data() + part.size();
-  };
-  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), width) ||
-      !number(std::string_view(text).substr(x + 1), height))
-    throw UsageError("--size expects WIDTHxHEIGHT in pixels, got '" + text + "'");
-  if (width == 0 || height == 0 || width > kRenderMaxSize || height > kRenderMaxSize)
-    throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, kRenderMaxSize, kRenderMaxSize));
-}
 
 // --seed S turns every layer's seed into (seed + S) mod 2^32: another planet of the same kind.
 void applySeed(PlanetDescription& planet, uint64_t seed) {

@@ -30,13 +30,18 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-    // A command group (planet, planet bench) given without its command.
+    // A command group (planet, planet bench) given without its command. planet bench given
+    // options of its own ran the frame benchmark instead.
     std::string path = "planet";
     for (CLI::App* group = &app; group;) {
       std::vector<CLI::App*> chosen = group->get_subcommands();
-      if (!group->get_subcommands({}).empty() && chosen.empty()) {
+      size_t ownOptions = 0;
+      for (const CLI::Option* option : group->get_options()) ownOptions += option->count();
+      const bool ranItself = group != &app && ownOptions > 0;
+      if (!group->get_subcommands({}).empty() && chosen.empty() && !ranItself) {
         std::string names;
         for (CLI::App* sub : group->get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+        if (group != &app && group->get_options().size() > 1) names += ", or options of its own";
         throw cli::UsageError("a command is required after '" + path + "': " + names + " (see " + path + " --help)");
       }
       group = chosen.empty() ? nullptr : chosen.front();

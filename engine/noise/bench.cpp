@@ -8,6 +8,7 @@
 #include <libnoise/noise.h>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "noise/noise_cpu.h"
 #include "noise/noise_gpu.h"
 #include "noise/validate.h"
@@ -29,10 +30,8 @@ NoiseBenchResult measure(const std::string& method, const NoiseBenchOptions& opt
   std::vector<double> rates;
   const double evals = double(options.points) * options.octaves;
   for (int i = 0; i < options.repeats; ++i) rates.push_back(evals / run() / 1e6);
-  std::sort(rates.begin(), rates.end());
-  size_t n = rates.size();
-  double median = n % 2 ? rates[n / 2] : 0.5 * (rates[n / 2 - 1] + rates[n / 2]);
-  return {method, options.octaves, median, rates.front(), rates.back()};
+  const auto [low, high] = std::minmax_element(rates.begin(), rates.end());
+  return {method, options.octaves, percentile(rates, 50.0), *low, *high};
 }
 
 // libnoise modules evaluated point by point on one thread, as a library user would.

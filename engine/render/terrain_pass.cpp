@@ -1,6 +1,7 @@
 #include "render/terrain_pass.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -12,8 +13,10 @@
 #include "planet/terrain_height.h"
 #include "render/patch_textures.h"
 #include "render/sky_tables.h"
+#include "render/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
 #include "spv/terrain.vert.h"
+#include "spv/terrain_noise.vert.h"
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_normals.comp.h"
 #include "spv/water.frag.h"
@@ -46,6 +49,15 @@ constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::
 glm::vec4 toVec4(const glm::vec3& v, float w = 0.0f) { return glm::vec4(v, w); }
 
 }  // namespace
+
+const char* heightSourceName(HeightSource source) {
+  switch (source) {
+    case HeightSource::Compute: return "compute";
+    case HeightSource::VertexShader: return "vertex_shader";
+    case HeightSource::Cpu: return "cpu";
+  }
+  return "?";
+}
 
 double ringSpacingM(const ClipmapParams& params, double radiusM, uint32_t ring) {
   const uint32_t rings = clipmapRingCount(params);
@@ -93,6 +105,7 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     std::vector<gpu::RingBudget> budgets(rings + 1, gpu::RingBudget{});
     for (uint32_t ring = 0; ring <= rings; ++ring) {
       const double spacing = settings.limitOctaves ? ringSpacingM(settings.mesh, planet.radiusM, ring) : 0.0;
+      if (settings.heightSource == HeightSource::Cpu) ringSpacings_.push_back(spacing);
       for (size_t l = 0; l < planet.layers.size(); ++l) {
         const OctaveBudget budget = octaveBudget(planet.layers[l], spacing);
         budgets[ring].octaves[l] = budget.octaves;
@@ -111,6 +124,9 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     shifts_ = vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
     uniforms_ = vk::createBuffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                  vk::MemoryUsage::Upload);
+    if (settings.heightSource == HeightSource::Cpu)
+      cpuStaging_ = vk::createBuffer(context, 2 * vertexCount * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                     vk::MemoryUsage::Upload);
 
     const VkShaderStageFlags stages =
         VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -135,6 +151,12 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     desc.vertexSpirv = kSpv_terrain_vert;
     desc.fragmentSpirv = kSpv_terrain_frag;
     desc.layout = layout_;
+    if (settings.heightSource == HeightSource::VertexShader) {
+      noiseDrawLayout_ =
+          vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_VERTEX_BIT);
+      desc.vertexSpirv = kSpv_terrain_noise_vert;
+      desc.layout = noiseDrawLayout_;
+    }
     desc.colorFormat = colorFormat;
     desc.depthFormat = depthFormat;
     desc.polygonMode = settings.wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
@@ -143,8 +165,12 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     desc.cullMode = settings.wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     drawPipeline_ = vk::createGraphicsPipeline(context, desc);
-    if (planet.hasOcean && settings_.water && !settings_.wireframe) {
+    // The sea reads the vertex buffers the compute (or CPU) heights fill; seed 002's design
+    // (heights in the vertex shader, a benchmark comparison) has none, so it draws no sea.
+    if (planet.hasOcean && settings_.water && !settings_.wireframe &&
+        settings.heightSource != HeightSource::VertexShader) {
       // The sea over the ground: premultiplied "over" blending, depth tested and written.
+      desc.layout = layout_;
       desc.vertexSpirv = kSpv_water_vert;
       desc.fragmentSpirv = kSpv_water_frag;
       desc.alphaBlend = true;
@@ -165,15 +191,16 @@ void TerrainPass::release() {
   if (drawPipeline_) vkDestroyPipeline(device, drawPipeline_, nullptr);
   if (normalsPipeline_) vkDestroyPipeline(device, normalsPipeline_, nullptr);
   if (heightsPipeline_) vkDestroyPipeline(device, heightsPipeline_, nullptr);
+  if (noiseDrawLayout_) vkDestroyPipelineLayout(device, noiseDrawLayout_, nullptr);
   if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
   waterPipeline_ = drawPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
+  layout_ = noiseDrawLayout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
-  for (vk::Buffer* b :
-       {&uniforms_, &shifts_, &remainders_, &attributes_, &normals_, &surface_, &budgets_, &indices_, &meshVertices_})
+  for (vk::Buffer* b : {&cpuStaging_, &uniforms_, &shifts_, &remainders_, &attributes_, &normals_, &surface_, &budgets_,
+                        &indices_, &meshVertices_})
     vk::destroyBuffer(context_, *b);
   patches_.reset();
   data_.reset();
@@ -309,36 +336,80 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   vk::uploadBuffer(context_, uniforms_, &u, sizeof(u));
 }
 
+gpu::TerrainComputePush TerrainPass::heightPush() const {
+  gpu::TerrainComputePush push{};
+  push.numPhi = settings_.mesh.numPhi;
+  push.ringCount = mesh_.ringCount();
+  push.layerCount = uint32_t(planet_.layers.size());
+  push.baseHeightM = float(planet_.baseHeightM);
+  push.heightScale = float(planet_.heightScale);
+  push.bandFrequency = float(1.0 / settings_.bandWavelengthM);
+  push.firstRing = frame_.heightFirstRing;
+  push.lastRing = frame_.heightLastRing;
+  push.poleNeighbourRing = frame_.rings.lastRing;
+  return push;
+}
+
+void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, uint32_t vertexCount) {
+  CpuSurfaceJob job;
+  job.planet = &planet_;
+  job.tables = &tables_;
+  job.mesh = &mesh_;
+  job.frame = &uniformData_;
+  job.ringSpacingM = ringSpacings_;
+  job.bandFrequency = float(1.0 / settings_.bandWavelengthM);
+  job.firstVertex = firstVertex;
+  job.vertexCount = vertexCount;
+  const VkDeviceSize vertices = mesh_.vertexCount();
+  glm::vec4* staging = static_cast<glm::vec4*>(cpuStaging_.mapped());
+  const auto start = std::chrono::steady_clock::now();
+  // The previous frame's copy out of the staging buffer has finished: its fence was waited for.
+  computeSurfaceCpu(job, settings_.cpuThreads, staging, staging + vertices);
+  frame_.cpuHeightsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const VkDeviceSize v4 = sizeof(glm::vec4);
+  const VkDeviceSize pole = mesh_.poleVertex();
+  const VkBufferCopy surface[2] = {{firstVertex * v4, firstVertex * v4, vertexCount * v4}, {pole * v4, pole * v4, v4}};
+  const VkBufferCopy attributes[2] = {{(vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
+                                      {(vertices + pole) * v4, pole * v4, v4}};
+  vkCmdCopyBuffer(cmd, cpuStaging_.buffer, surface_.buffer, 2, surface);
+  vkCmdCopyBuffer(cmd, cpuStaging_.buffer, attributes_.buffer, 2, attributes);
+  // The normals pass reads the uploaded heights, the vertex shader the attributes.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
 void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   frame_.heightsComputed = !(computed_ && *computed_ == pending_);
   frame_.verticesEvaluated = 0;
+  frame_.cpuHeightsMs = 0.0;
   const uint32_t n = settings_.mesh.numPhi;
-  if (frame_.heightsComputed) {
+  if (settings_.heightSource == HeightSource::VertexShader) {
+    // The draw evaluates every vertex it draws, every frame: nothing to compute ahead.
+    frame_.heightsComputed = true;
+    frame_.verticesEvaluated = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n + 1;
+  } else if (frame_.heightsComputed) {
     if (timer) timer->begin(cmd, "heights");
     // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0);
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    gpu::TerrainComputePush push{};
-    push.numPhi = n;
-    push.ringCount = mesh_.ringCount();
-    push.layerCount = uint32_t(planet_.layers.size());
-    push.baseHeightM = float(planet_.baseHeightM);
-    push.heightScale = float(planet_.heightScale);
-    push.bandFrequency = float(1.0 / settings_.bandWavelengthM);
-    push.firstRing = frame_.heightFirstRing;
-    push.lastRing = frame_.heightLastRing;
-    push.poleNeighbourRing = frame_.rings.lastRing;
+    gpu::TerrainComputePush push = heightPush();
     push.firstVertex = frame_.heightFirstRing * n;
     push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
     frame_.verticesEvaluated = push.vertexCount + 1;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(
-        cmd, (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize, 1, 1);
-    // Normals read the heights just written.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    if (settings_.heightSource == HeightSource::Cpu) {
+      recordCpuHeights(cmd, push.firstVertex, push.vertexCount);
+    } else {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_);
+      vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+      vkCmdDispatch(cmd,
+                    (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize,
+                    1, 1);
+      // Normals read the heights just written.
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    }
     push.firstVertex = frame_.rings.firstRing * n;
     push.vertexCount = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalsPipeline_);
@@ -363,7 +434,12 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  const VkPipelineLayout drawLayout = noiseDrawLayout_ ? noiseDrawLayout_ : layout_;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &set_, 0, nullptr);
+  if (noiseDrawLayout_) {
+    const gpu::TerrainComputePush push = heightPush();
+    vkCmdPushConstants(cmd, noiseDrawLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+  }
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
   // Bands firstRing..lastRing−1, then the fan that closes ring lastRing at the pole.
   const IndexRange bands = mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing);

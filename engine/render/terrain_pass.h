@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -30,6 +31,16 @@ namespace planet {
 class PatchTextures;
 class SkyTables;
 
+// Where the vertex heights come from. Compute is the design; the others exist to measure it
+// against (planet bench --compare) and must draw the same picture.
+enum class HeightSource {
+  Compute,       // terrain_heights.comp, only in frames where the camera moved
+  VertexShader,  // terrain_noise.vert: every drawn vertex and its four neighbours, every draw (seed 002)
+  Cpu,           // the CPU reference on all cores, uploaded into the buffers the compute pass writes
+};
+// "compute", "vertex_shader", "cpu".
+const char* heightSourceName(HeightSource source);
+
 struct TerrainSettings {
   // 30 levels reach θ = π·2^−30 (2 cm on Earth): deep enough that, at 2 m altitude, rings are
   // drawn down to an eighth of a pixel and the fan that closes the mesh is a few pixels wide.
@@ -46,6 +57,9 @@ struct TerrainSettings {
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
   double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
   bool water = true;          // draw the water sphere (planets with an ocean)
+
+  HeightSource heightSource = HeightSource::Compute;
+  unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
 };
 
 // What the CPU decided for a frame.
@@ -60,7 +74,8 @@ struct TerrainFrameInfo {
   double metresPerVertexAtNadir = 0.0;
   double poleCapRadiusM = 0.0;
   uint64_t triangles = 0;
-  uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped)
+  uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped; VertexShader: drawn)
+  double cpuHeightsMs = 0.0;       // HeightSource::Cpu: wall time of the CPU evaluation this frame
   uint32_t patchLevelsRebuilt = 0;
   bool heightsComputed = false;
   PatchLayout patchLayout;
@@ -114,6 +129,10 @@ class TerrainPass {
  private:
   void release();
   void writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection);
+  gpu::TerrainComputePush heightPush() const;
+  // HeightSource::Cpu: evaluates this frame's vertices on the CPU into the staging buffer and
+  // records its copy into surface_ and attributes_.
+  void recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, uint32_t vertexCount);
 
   vk::Context& context_;
   PlanetDescription planet_;
@@ -132,6 +151,8 @@ class TerrainPass {
   vk::Buffer remainders_;
   vk::Buffer shifts_;
   vk::Buffer uniforms_;
+  vk::Buffer cpuStaging_;             // HeightSource::Cpu: surface, then attributes, as the mesh's vertices
+  std::vector<double> ringSpacings_;  // HeightSource::Cpu: per ring and the pole (0: every octave)
 
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
@@ -142,6 +163,7 @@ class TerrainPass {
   VkPipeline drawPipeline_ = VK_NULL_HANDLE;
   VkPipeline waterPipeline_ = VK_NULL_HANDLE;
   const SkyTables& sky_;
+  VkPipelineLayout noiseDrawLayout_ = VK_NULL_HANDLE;  // HeightSource::VertexShader: push constants in the vertex stage
 
   TerrainFrameInfo frame_;
   OctaveTables tables_;

@@ -52,7 +52,8 @@ std::vector<GpuTiming> GpuTimer::results(Context& context) const {
                                  stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   for (size_t i = 0; i < names_.size(); ++i) {
     uint64_t ticks = (stamps[2 * i + 1] - stamps[2 * i]) & validMask_;
-    timings.push_back({names_[i], double(ticks) * periodNs_ * 1e-6});
+    uint64_t start = (stamps[2 * i] - stamps[0]) & validMask_;
+    timings.push_back({names_[i], double(ticks) * periodNs_ * 1e-6, double(start) * periodNs_ * 1e-6});
   }
   return timings;
 }

@@ -15,6 +15,7 @@ class Context;
 struct GpuTiming {
   std::string name;
   double milliseconds = 0.0;
+  double startMs = 0.0;  // when the scope began, after the first scope of the recording began
 };
 
 class GpuTimer {

@@ -1,0 +1,282 @@
+#include "render/frame_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "render/renderer.h"
+#include "vk/context.h"
+
+namespace planet {
+namespace {
+
+nlohmann::json toJson(const Summary& s) {
+  return {{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}, {"max", s.max}};
+}
+
+template <typename Fn>
+Summary summaryOf(const std::vector<FrameRecord>& frames, Fn value) {
+  std::vector<double> values;
+  values.reserve(frames.size());
+  for (const FrameRecord& f : frames) values.push_back(double(value(f)));
+  return summarize(values);
+}
+
+ModeRun runMode(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
+                const FrameBenchOptions& options, const BenchMode& mode, const FrameBenchProgress& progress) {
+  RenderSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.fovYDeg = options.fovYDeg;
+  settings.terrain.heightSource = mode.heightSource;
+  settings.terrain.limitOctaves = mode.limitOctaves;
+  settings.terrain.patches = options.patches;
+  Renderer renderer(context, planet, settings);
+  ModeRun run;
+  run.mode = mode;
+  double lastMs = 0.0;
+  for (int phase = 0; phase < 2; ++phase) {
+    const bool warmup = phase == 0;
+    const uint32_t count = warmup ? options.warmup : options.frames;
+    for (uint32_t i = 0; i < count; ++i) {
+      if (progress) progress(mode.name, warmup, i, count, lastMs);
+      // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
+      // timed frame's pose, which would let that frame skip its height pass.
+      const double timeS =
+          warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
+      const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
+      const auto start = std::chrono::steady_clock::now();
+      RenderResult result = renderer.render(pose, options.sun);
+      lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (warmup) continue;
+      FrameRecord f;
+      f.index = i;
+      f.pathTimeS = timeS;
+      f.camera = result.camera;
+      f.heightAboveGroundM = result.terrain.heightAboveGroundM;
+      f.frameMs = lastMs;
+      f.passes = std::move(result.timings);
+      if (!f.passes.empty()) {
+        double first = f.passes.front().startMs, last = first;
+        for (const vk::GpuTiming& t : f.passes) {
+          first = std::min(first, t.startMs);
+          last = std::max(last, t.startMs + t.milliseconds);
+        }
+        f.gpuMs = last - first;
+      }
+      f.cpuHeightsMs = result.terrain.cpuHeightsMs;
+      f.triangles = result.terrain.triangles;
+      f.verticesEvaluated = result.terrain.verticesEvaluated;
+      f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
+      // A pass seen for the first time goes after the pass recorded before it in this frame, so
+      // that the list keeps recording order when the first frames skip a pass.
+      auto after = run.passNames.begin();
+      for (const vk::GpuTiming& t : f.passes) {
+        auto found = std::find(run.passNames.begin(), run.passNames.end(), t.name);
+        if (found == run.passNames.end()) found = run.passNames.insert(after, t.name);
+        after = found + 1;
+      }
+      run.frames.push_back(std::move(f));
+    }
+  }
+  run.frameMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.frameMs; });
+  run.gpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.gpuMs; });
+  run.cpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuMs(); });
+  run.terrainMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.terrainMs(); });
+  run.cpuHeightsMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuHeightsMs; });
+  for (const std::string& name : run.passNames)
+    run.passMs.push_back(summaryOf(run.frames, [&](const FrameRecord& f) { return f.passMs(name); }));
+  return run;
+}
+
+std::string terrainTimeDefinition() {
+  std::string names;
+  for (const char* pass : kTerrainTimePasses) names += fmt::format("{}{}", names.empty() ? "" : " + ", pass);
+  return names + " (+ CPU heights in cpu mode)";
+}
+
+}  // namespace
+
+std::vector<BenchMode> benchModes(bool compare) {
+  std::vector<BenchMode> modes = {{"compute", HeightSource::Compute, true}};
+  if (compare) {
+    modes.push_back({"vertex_shader", HeightSource::VertexShader, true});
+    modes.push_back({"cpu", HeightSource::Cpu, true});
+    modes.push_back({"octaves_off", HeightSource::Compute, false});
+  }
+  return modes;
+}
+
+double FrameRecord::passMs(const std::string& name) const {
+  double sum = 0.0;
+  for (const vk::GpuTiming& t : passes)
+    if (t.name == name) sum += t.milliseconds;
+  return sum;
+}
+
+double FrameRecord::passSumMs() const {
+  double sum = 0.0;
+  for (const vk::GpuTiming& t : passes) sum += t.milliseconds;
+  return sum;
+}
+
+double FrameRecord::terrainMs() const {
+  double sum = cpuHeightsMs;
+  for (const char* pass : kTerrainTimePasses) sum += passMs(pass);
+  return sum;
+}
+
+double FrameBenchReport::ratio(const std::string& mode) const {
+  for (const ModeRun& run : runs)
+    if (run.mode.name == mode && runs.front().terrainMs.median > 0.0)
+      return run.terrainMs.median / runs.front().terrainMs.median;
+  return 0.0;
+}
+
+nlohmann::json FrameBenchReport::toJson() const {
+  const ModeRun& main = runs.front();
+  nlohmann::json j;
+  j["device"] = device;
+  j["driver"] = driver;
+  j["width"] = options.width;
+  j["height"] = options.height;
+  j["fov_deg"] = options.fovYDeg;
+  j["patches"] = options.patches;
+  j["frames"] = options.frames;
+  j["warmup"] = options.warmup;
+  j["preset"] = preset;
+  j["preset_hash"] = fmt::format("{:016x}", presetHash);
+  j["path"] = {{"source", pathSource}, {"keys", pathKeys}, {"duration_s", pathDurationS}};
+  j["mode"] = main.mode.name;
+  j["frame_ms"] = planet::toJson(main.frameMs);
+  j["gpu_ms"] = planet::toJson(main.gpuMs);
+  j["cpu_ms"] = planet::toJson(main.cpuMs);
+  j["fps"] = main.frameMs.median > 0.0 ? 1000.0 / main.frameMs.median : 0.0;
+  j["passes"] = nlohmann::json::object();
+  for (size_t p = 0; p < main.passNames.size(); ++p) j["passes"][main.passNames[p]] = planet::toJson(main.passMs[p]);
+  j["terrain_ms"] = planet::toJson(main.terrainMs);
+  j["terrain_ms_is"] = terrainTimeDefinition();
+  double minSpacing = main.frames.front().metresPerVertexAtNadir;
+  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
+  j["nadir_m_per_vertex_min"] = minSpacing;
+  j["triangles_median"] =
+      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median));
+  j["vertices_evaluated_median"] =
+      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median));
+  j["compare"] = nlohmann::json::object();
+  j["modes"] = nlohmann::json::object();
+  for (const ModeRun& run : runs) {
+    if (&run != &main) j["compare"][run.mode.name] = ratio(run.mode.name);
+    nlohmann::json m;
+    m["height_source"] = heightSourceName(run.mode.heightSource);
+    m["limit_octaves"] = run.mode.limitOctaves;
+    m["frame_ms"] = planet::toJson(run.frameMs);
+    m["gpu_ms"] = planet::toJson(run.gpuMs);
+    m["terrain_ms"] = planet::toJson(run.terrainMs);
+    m["cpu_heights_ms"] = planet::toJson(run.cpuHeightsMs);
+    m["passes"] = nlohmann::json::object();
+    for (size_t p = 0; p < run.passNames.size(); ++p) m["passes"][run.passNames[p]] = planet::toJson(run.passMs[p]);
+    j["modes"][run.mode.name] = m;
+  }
+  j["per_frame"] = nlohmann::json::array();
+  for (const FrameRecord& f : main.frames) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (const vk::GpuTiming& t : f.passes) passes[t.name] = f.passMs(t.name);
+    j["per_frame"].push_back({{"frame", f.index},
+                              {"time_s", f.pathTimeS},
+                              {"lat_deg", f.camera.latitudeDeg},
+                              {"lon_deg", f.camera.longitudeDeg},
+                              {"altitude_m", f.camera.altitudeM},
+                              {"height_m", f.heightAboveGroundM},
+                              {"frame_ms", f.frameMs},
+                              {"gpu_ms", f.gpuMs},
+                              {"cpu_ms", f.cpuMs()},
+                              {"terrain_ms", f.terrainMs()},
+                              {"passes", passes},
+                              {"triangles", f.triangles},
+                              {"vertices_evaluated", f.verticesEvaluated},
+                              {"m_per_vertex_nadir", f.metresPerVertexAtNadir}});
+  }
+  return j;
+}
+
+std::string FrameBenchReport::csv() const {
+  std::vector<std::string> passes;
+  for (const ModeRun& run : runs)
+    for (const std::string& name : run.passNames)
+      if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
+  std::string out =
+      "mode,frame,time_s,lat_deg,lon_deg,altitude_m,height_m,frame_ms,gpu_ms,cpu_ms,terrain_ms,cpu_heights_ms";
+  for (const std::string& name : passes) out += ",pass_" + name + "_ms";
+  out += ",triangles,vertices_evaluated,m_per_vertex_nadir\n";
+  for (const ModeRun& run : runs)
+    for (const FrameRecord& f : run.frames) {
+      out += fmt::format("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.mode.name, f.index, f.pathTimeS,
+                         f.camera.latitudeDeg, f.camera.longitudeDeg, f.camera.altitudeM, f.heightAboveGroundM,
+                         f.frameMs, f.gpuMs, f.cpuMs(), f.terrainMs(), f.cpuHeightsMs);
+      for (const std::string& name : passes) out += fmt::format(",{:.4f}", f.passMs(name));
+      out += fmt::format(",{},{},{}\n", f.triangles, f.verticesEvaluated, f.metresPerVertexAtNadir);
+    }
+  return out;
+}
+
+std::string FrameBenchReport::table() const {
+  const ModeRun& main = runs.front();
+  std::string out = fmt::format("device: {} ({})\n", device, driver);
+  out += fmt::format("preset: {} (hash {:016x}), {}x{}{}, path: {} ({} keys, {} s), {} frames after {} warm-up\n\n",
+                     preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
+                     pathSource, pathKeys, pathDurationS, options.frames, options.warmup);
+  out += fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9}\n", "ms (mode " + main.mode.name + ")", "median", "p95", "p99",
+                     "max");
+  auto row = [&](const std::string& name, const Summary& s) {
+    out += fmt::format("{:<34} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n", name, s.median, s.p95, s.p99, s.max);
+  };
+  row("frame (wall clock)", main.frameMs);
+  row("GPU (first to last timestamp)", main.gpuMs);
+  row("CPU (frame - GPU)", main.cpuMs);
+  for (size_t p = 0; p < main.passNames.size(); ++p) row("  pass " + main.passNames[p], main.passMs[p]);
+  row("terrain time", main.terrainMs);
+  double minSpacing = main.frames.front().metresPerVertexAtNadir;
+  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
+  out += fmt::format("\nframes per second (median frame): {:.2f}\n", 1000.0 / main.frameMs.median);
+  out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", minSpacing);
+  out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n",
+                     summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median,
+                     summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median);
+  out += fmt::format("terrain time = {}\n", terrainTimeDefinition());
+  if (runs.size() > 1) {
+    out += fmt::format("\ncompare: median terrain time over {}'s ({:.2f} ms)\n", main.mode.name, main.terrainMs.median);
+    for (const ModeRun& run : runs)
+      if (&run != &main)
+        out += fmt::format("  {:<14} {:>7.2f}x  (terrain {:.2f} ms, frame {:.2f} ms median)\n", run.mode.name,
+                           ratio(run.mode.name), run.terrainMs.median, run.frameMs.median);
+  }
+  return out;
+}
+
+FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& planet, const std::string& preset,
+                               const CameraPath& path, const std::string& pathSource, const FrameBenchOptions& options,
+                               const FrameBenchProgress& progress) {
+  if (options.frames < 1 || options.frames > kBenchMaxFrames)
+    throw Error(fmt::format("frames must be in 1..{}, got {}", kBenchMaxFrames, options.frames));
+  if (options.warmup > kBenchMaxWarmup)
+    throw Error(fmt::format("warm-up frames must be in 0..{}, got {}", kBenchMaxWarmup, options.warmup));
+  validateCameraPath(path, pathSource);
+  FrameBenchReport report;
+  report.device = context.info.name;
+  report.driver = context.info.driver;
+  report.options = options;
+  report.preset = preset;
+  report.presetHash = descriptionHash(planet);
+  report.pathSource = pathSource;
+  report.pathKeys = path.keys.size();
+  report.pathDurationS = path.durationS();
+  for (const BenchMode& mode : benchModes(options.compare))
+    report.runs.push_back(runMode(context, planet, path, options, mode, progress));
+  return report;
+}
+
+}  // namespace planet

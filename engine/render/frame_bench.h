@@ -1,0 +1,119 @@
+// `planet bench` (issue 6): frame times of the headless renderer along a camera path. Every
+// timed frame records its wall-clock time, the GPU time of every pass the Renderer timed (so
+// passes added to the Renderer are measured without changes here), the span from the first
+// timestamp to the last, and what the terrain decided (triangles, vertices evaluated, metres
+// per vertex at the nadir). With `compare`, the same path is flown again with each other way
+// of producing the vertex heights and with octave limiting off, and each is reported as a
+// ratio of its median terrain time to the default's.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/statistics.h"
+#include "planet/planet_description.h"
+#include "render/camera.h"
+#include "render/camera_path.h"
+#include "render/terrain_pass.h"
+#include "vk/timer.h"
+
+namespace planet::vk {
+class Context;
+}
+
+namespace planet {
+
+inline constexpr uint32_t kBenchMaxFrames = 100'000;
+inline constexpr uint32_t kBenchMaxWarmup = 10'000;
+
+struct FrameBenchOptions {
+  uint32_t width = 640;
+  uint32_t height = 360;
+  uint32_t frames = 120;  // timed frames, spread evenly over the path (>= 1)
+  uint32_t warmup = 5;    // untimed frames first, at the middles of as many equal parts of the path
+  double fovYDeg = 60.0;
+  SunPose sun;
+  bool compare = false;  // also run every other BenchMode
+  bool patches = true;   // patch textures (off: vertex normals only, like planet render --no-patches)
+};
+
+// One way to produce the terrain: the default (compute heights, octave limits on) and those
+// it is compared with.
+struct BenchMode {
+  std::string name;  // compute, vertex_shader, cpu, octaves_off
+  HeightSource heightSource = HeightSource::Compute;
+  bool limitOctaves = true;
+};
+// The default mode first; with `compare` the other three after it.
+std::vector<BenchMode> benchModes(bool compare);
+
+// The "terrain time" of a frame, the quantity --compare compares: the GPU passes that produce
+// and draw the terrain mesh, "heights" (compute heights and normals, or the CPU upload and
+// normals) and "terrain" (the draw, which in vertex_shader mode evaluates the heights), plus
+// the CPU evaluation of cpu mode. The patch textures are left out: they are the same work in
+// every mode.
+inline constexpr const char* kTerrainTimePasses[] = {"heights", "terrain"};
+
+struct FrameRecord {
+  uint32_t index = 0;
+  double pathTimeS = 0.0;
+  CameraPose camera;  // as rendered
+  double heightAboveGroundM = 0.0;
+  double frameMs = 0.0;               // wall clock of Renderer::render: CPU work, GPU work, waiting, read-back
+  double gpuMs = 0.0;                 // first timestamp of the frame to the last
+  std::vector<vk::GpuTiming> passes;  // GPU scopes in recording order
+  double cpuHeightsMs = 0.0;          // cpu mode: the threaded CPU evaluation (inside frameMs, outside gpuMs)
+  uint64_t triangles = 0;
+  uint32_t verticesEvaluated = 0;
+  double metresPerVertexAtNadir = 0.0;
+
+  double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
+  double passSumMs() const;                      // every GPU pass
+  double terrainMs() const;                      // kTerrainTimePasses + cpuHeightsMs
+  double cpuMs() const { return frameMs - gpuMs; }
+};
+
+struct ModeRun {
+  BenchMode mode;
+  std::vector<FrameRecord> frames;
+  std::vector<std::string> passNames;  // every GPU pass seen, in order of first appearance
+  // Statistics over the timed frames; a pass that did not run in a frame counts 0 ms there.
+  Summary frameMs, gpuMs, cpuMs, terrainMs, cpuHeightsMs;
+  std::vector<Summary> passMs;  // per passNames
+};
+
+struct FrameBenchReport {
+  std::string device;
+  std::string driver;
+  FrameBenchOptions options;
+  std::string preset;       // as given (name or file)
+  uint64_t presetHash = 0;  // descriptionHash of the planet
+  std::string pathSource;   // "default" or the file
+  size_t pathKeys = 0;
+  double pathDurationS = 0.0;
+  std::vector<ModeRun> runs;  // runs[0]: the default mode
+
+  // Median terrain time of `mode` over the default's; 0 when the mode was not run.
+  double ratio(const std::string& mode) const;
+  nlohmann::json toJson() const;
+  // One row per timed frame of every mode: mode, frame, path time, camera, frame/GPU/CPU/terrain
+  // times, one pass_<name>_ms column per pass of any mode, triangles, vertices, m/vertex.
+  std::string csv() const;
+  std::string table() const;
+};
+
+// Called before each frame: mode name, warm-up or not, frame index and count, and the previous
+// frame's wall time (0 for the first).
+using FrameBenchProgress =
+    std::function<void(const std::string& mode, bool warmup, uint32_t frame, uint32_t count, double lastFrameMs)>;
+
+// Throws planet::Error for frames or warm-up out of range, or what the Renderer throws.
+FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& planet, const std::string& preset,
+                               const CameraPath& path, const std::string& pathSource, const FrameBenchOptions& options,
+                               const FrameBenchProgress& progress = {});
+
+}  // namespace planet

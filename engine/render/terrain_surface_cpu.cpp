@@ -1,0 +1,87 @@
+// Compiled with -ffp-contract=off like the noise reference (engine/CMakeLists.txt): the band
+// noise below is the shader's code compiled as C++.
+#include "render/terrain_surface_cpu.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <thread>
+#include <vector>
+
+#include "noise/noise_kernel.h"
+
+namespace planet {
+namespace {
+
+// terrain_surface.glsl's faceOffset.
+glm::vec2 faceOffset(const gpu::FrameUniforms& frame, const glm::vec3& delta) {
+  const float cN = frame.faceNormal.w;
+  const float dN = glm::dot(delta, glm::vec3(frame.faceNormal));
+  const float denominator = cN * (cN + dN);
+  if (cN + dN <= 0.05f) return glm::vec2(1e30f);
+  const float da = glm::dot(delta, glm::vec3(frame.faceAxisA)) * cN - frame.faceAxisA.w * dN;
+  const float db = glm::dot(delta, glm::vec3(frame.faceAxisB)) * cN - frame.faceAxisB.w * dN;
+  return glm::vec2(da, db) / denominator;
+}
+
+// terrain_surface.glsl's surfaceAttributes.
+glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPlanet) {
+  const gpu::FrameUniforms& frame = *job.frame;
+  const float radius = frame.camera.y;
+  const glm::vec3 nadir = glm::vec3(frame.localToPlanet[2]);
+  const glm::vec3 directionPlanet = nadir + offsetPlanet / radius;
+  gpu::NoiseParams band{};
+  band.type = gpu::kNoiseSimplex;
+  band.octaves = 1u;
+  band.hash = gpu::kNoiseHashFast;
+  band.seedMix = 0x5bd1e995u;
+  band.lacunarity = 2.0f;
+  band.octaveWeight = 0.5f;
+  band.lastOctaveWeight = 1.0f;
+  noise::NoiseKernel<float> kernel;
+  const float bandNoise = kernel.evaluateNoise(band, directionPlanet * (radius * job.bandFrequency));
+  const glm::vec2 face = faceOffset(frame, offsetPlanet / radius - glm::vec3(frame.refMinusNadir));
+  return glm::vec4(face, bandNoise, glm::normalize(directionPlanet).z);
+}
+
+void computeVertex(const CpuSurfaceJob& job, uint32_t index, glm::vec4* surface, glm::vec4* attributes) {
+  const ClipmapVertex& v = job.mesh->vertices[index];
+  const float s = std::sin(v.theta);
+  const float h2 = std::sin(0.5f * v.theta);
+  const glm::vec3 offsetLocal =
+      job.frame->camera.y * glm::vec3(s * std::cos(v.phi), s * std::sin(v.phi), -2.0f * h2 * h2);
+  const glm::vec3 offsetPlanet = glm::mat3(job.frame->localToPlanet) * offsetLocal;
+  const float height = terrainHeightRebased(*job.planet, *job.tables, offsetPlanet, job.ringSpacingM[v.ring]);
+  surface[index] = glm::vec4(offsetLocal, height);
+  attributes[index] = surfaceAttributes(job, offsetPlanet);
+}
+
+}  // namespace
+
+void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* surface, glm::vec4* attributes) {
+  const uint32_t total = job.vertexCount + 1;  // the range, then the pole
+  const uint32_t pole = job.mesh->poleVertex();
+  auto vertexOf = [&](uint32_t k) { return k == job.vertexCount ? pole : job.firstVertex + k; };
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, total);
+  std::vector<std::exception_ptr> errors(threads);
+  auto work = [&](unsigned t) {
+    try {
+      // Interleaved blocks of 256 vertices: rings differ in cost (octave budgets), so
+      // contiguous halves would not balance.
+      for (uint32_t block = t * 256u; block < total; block += threads * 256u)
+        for (uint32_t k = block; k < std::min(total, block + 256u); ++k)
+          computeVertex(job, vertexOf(k), surface, attributes);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+}
+
+}  // namespace planet

@@ -1,0 +1,107 @@
+// The terrain surface at one clipmap vertex: its point on the sea sphere, its height from the
+// planet's noise stack (rebased octave tables, octaves limited by its ring's RingBudget) and
+// its shading attributes. Written once for the two GPU height sources of the terrain pass:
+// terrain_heights.comp (HeightSource::Compute, the design) and terrain_noise.vert
+// (HeightSource::VertexShader, seed 002's design, kept for `planet bench --compare`).
+// The includer declares nothing of its own before this file; `push` is the frame's
+// TerrainComputePush in both.
+#ifndef PLANET_TERRAIN_VERTEX_SURFACE_GLSL
+#define PLANET_TERRAIN_VERTEX_SURFACE_GLSL
+
+#include "terrain_common.glsl"
+
+layout(push_constant) uniform Push { TerrainComputePush push; };
+
+layout(std430, set = 0, binding = kRenderBindingLayers) readonly buffer Layers { TerrainLayer layers[]; };
+layout(std430, set = 0, binding = kRenderBindingRemainders) readonly buffer Remainders { vec4 remainders[]; };
+layout(std430, set = 0, binding = kRenderBindingShifts) readonly buffer Shifts { uvec4 shifts[]; };
+layout(std430, set = 0, binding = kRenderBindingPermutations) readonly buffer Permutations { uint permutations[]; };
+layout(std430, set = 0, binding = kRenderBindingBudgets) readonly buffer Budgets { RingBudget budgets[]; };
+
+uint gPermutationBase = 0u;
+#define PERM(i) permutations[gPermutationBase + (i)]
+#define OCTAVE_REMAINDER(layer, i) remainders[(layer) * kNoiseMaxOctaves + (i)]
+#define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
+#include "common/noise.glsl"
+
+// Face-coordinate offset of a direction from the patch reference point c (DESIGN.md precision
+// rule): with δ = d − c small, a − a_c = (δ·A (c·N) − (c·A) δ·N) / ((c·N)(c·N + δ·N)), every
+// term a product of small numbers, so the float result keeps its relative precision.
+vec2 faceOffset(vec3 delta) {
+  float cN = frame.faceNormal.w;
+  float dN = dot(delta, frame.faceNormal.xyz);
+  float denominator = cN * (cN + dN);
+  if (cN + dN <= 0.05f) return vec2(1e30f);  // far round the planet: outside every patch
+  float da = dot(delta, frame.faceAxisA.xyz) * cN - frame.faceAxisA.w * dN;
+  float db = dot(delta, frame.faceAxisB.xyz) * cN - frame.faceAxisB.w * dN;
+  return vec2(da, db) / denominator;
+}
+
+// Sea-sphere point of a mesh vertex minus the anchor, local frame: R (sinθ cosφ, sinθ sinφ,
+// cosθ − 1), with cosθ − 1 = −2 sin²(θ/2) so that it does not cancel near the pole.
+vec3 surfaceOffsetLocal(MeshVertex v) {
+  float theta = v.polar.x;
+  float phi = v.polar.y;
+  float s = sin(theta);
+  float h2 = sin(0.5f * theta);
+  return frame.camera.y * vec3(s * cos(phi), s * sin(phi), -2.0f * h2 * h2);
+}
+
+// Height in metres above the radius sphere at the point `offsetPlanet` (planet frame, metres
+// from the anchor), with the octaves of ring `ring`.
+float surfaceHeight(vec3 offsetPlanet, uint ring) {
+  RingBudget budget = budgets[ring];
+  precise float sum = push.baseHeightM;
+  for (uint l = 0u; l < push.layerCount; ++l) {
+    gPermutationBase = l * kNoisePermutationSize;
+    NoiseParams params = layers[l].noise;
+    params.octaves = budget.octaves[l];
+    params.lastOctaveWeight = budget.lastOctaveWeight[l];
+    OctaveWalk walk;
+    walk.q = vec3(0.0f);
+    walk.lacunarity = params.lacunarity;
+    walk.offset = offsetPlanet;
+    walk.layer = l;
+    walk.octave = 0u;
+    walk.rebased = 1u;
+    sum += layers[l].amplitudeM * fractalNoise(params, walk);
+  }
+  return push.heightScale * sum;
+}
+
+// Displaced position of mesh vertex `index` minus the anchor, local frame (what
+// terrain_normals.comp reads back from the surface buffer).
+vec3 surfacePosition(uint index) {
+  MeshVertex v = mesh[index];
+  vec3 offsetLocal = surfaceOffsetLocal(v);
+  float height = surfaceHeight(mat3(frame.localToPlanet) * offsetLocal, floatBitsToUint(v.polar.z));
+  return offsetLocal + height * v.direction.xyz;
+}
+
+// Shading attributes at `offsetPlanet`: face Δa, Δb of the patch textures, colour-band noise,
+// sin(latitude) (layout of kRenderBindingAttributes).
+vec4 surfaceAttributes(vec3 offsetPlanet) {
+  float radius = frame.camera.y;
+  // Planet-frame direction, good to float precision (colour and latitude only).
+  vec3 nadir = frame.localToPlanet[2].xyz;
+  vec3 directionPlanet = nadir + offsetPlanet / radius;
+  // Colour-band noise: one plain simplex octave over a few km, enough to fray band edges.
+  NoiseParams band;
+  band.type = kNoiseSimplex;
+  band.octaves = 1u;
+  band.hash = kNoiseHashFast;
+  band.seedMix = 0x5bd1e995u;
+  band.lacunarity = 2.0f;
+  band.octaveWeight = 0.5f;
+  band.offset = 0.0f;
+  band.gain = 0.0f;
+  band.count = 0u;
+  band.firstIndex = 0u;
+  band.lastOctaveWeight = 1.0f;
+  band.pad2 = 0u;
+  float bandNoise = evaluateNoise(band, directionPlanet * (radius * push.bandFrequency));
+  vec2 face = faceOffset(offsetPlanet / radius - frame.refMinusNadir.xyz);
+  return vec4(face, bandNoise, normalize(directionPlanet).z);
+}
+
+#endif
