@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -25,63 +26,43 @@ Summary summaryOf(const std::vector<FrameRecord>& frames, Fn value) {
   return summarize(values);
 }
 
-ModeRun runMode(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
-                const FrameBenchOptions& options, const BenchMode& mode, const FrameBenchProgress& progress) {
-  RenderSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.fovYDeg = options.fovYDeg;
-  settings.terrain.heightSource = mode.heightSource;
-  settings.terrain.limitOctaves = mode.limitOctaves;
-  settings.terrain.patches = options.patches;
-  Renderer renderer(context, planet, settings);
-  ModeRun run;
-  run.mode = mode;
-  double lastMs = 0.0;
-  for (int phase = 0; phase < 2; ++phase) {
-    const bool warmup = phase == 0;
-    const uint32_t count = warmup ? options.warmup : options.frames;
-    for (uint32_t i = 0; i < count; ++i) {
-      if (progress) progress(mode.name, warmup, i, count, lastMs);
-      // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
-      // timed frame's pose, which would let that frame skip its height pass.
-      const double timeS =
-          warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
-      const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
-      const auto start = std::chrono::steady_clock::now();
-      RenderResult result = renderer.render(pose, options.sun);
-      lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      if (warmup) continue;
-      FrameRecord f;
-      f.index = i;
-      f.pathTimeS = timeS;
-      f.camera = result.camera;
-      f.heightAboveGroundM = result.terrain.heightAboveGroundM;
-      f.frameMs = lastMs;
-      f.passes = std::move(result.timings);
-      if (!f.passes.empty()) {
-        double first = f.passes.front().startMs, last = first;
-        for (const vk::GpuTiming& t : f.passes) {
-          first = std::min(first, t.startMs);
-          last = std::max(last, t.startMs + t.milliseconds);
-        }
-        f.gpuMs = last - first;
-      }
-      f.cpuHeightsMs = result.terrain.cpuHeightsMs;
-      f.triangles = result.terrain.triangles;
-      f.verticesEvaluated = result.terrain.verticesEvaluated;
-      f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
-      // A pass seen for the first time goes after the pass recorded before it in this frame, so
-      // that the list keeps recording order when the first frames skip a pass.
-      auto after = run.passNames.begin();
-      for (const vk::GpuTiming& t : f.passes) {
-        auto found = std::find(run.passNames.begin(), run.passNames.end(), t.name);
-        if (found == run.passNames.end()) found = run.passNames.insert(after, t.name);
-        after = found + 1;
-      }
-      run.frames.push_back(std::move(f));
+// One frame of one mode, as the benchmark records it.
+FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResult& result) {
+  FrameRecord f;
+  f.index = index;
+  f.pathTimeS = timeS;
+  f.camera = result.camera;
+  f.heightAboveGroundM = result.terrain.heightAboveGroundM;
+  f.frameMs = frameMs;
+  f.passes = std::move(result.timings);
+  if (!f.passes.empty()) {
+    double first = f.passes.front().startMs, last = first;
+    for (const vk::GpuTiming& t : f.passes) {
+      first = std::min(first, t.startMs);
+      last = std::max(last, t.startMs + t.milliseconds);
     }
+    f.gpuMs = last - first;
   }
+  f.cpuHeightsMs = result.terrain.cpuHeightsMs;
+  f.triangles = result.terrain.triangles;
+  f.verticesEvaluated = result.terrain.verticesEvaluated;
+  f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
+  return f;
+}
+
+void addFrame(ModeRun& run, FrameRecord f) {
+  // A pass seen for the first time goes after the pass recorded before it in this frame, so
+  // that the list keeps recording order when the first frames skip a pass.
+  auto after = run.passNames.begin();
+  for (const vk::GpuTiming& t : f.passes) {
+    auto found = std::find(run.passNames.begin(), run.passNames.end(), t.name);
+    if (found == run.passNames.end()) found = run.passNames.insert(after, t.name);
+    after = found + 1;
+  }
+  run.frames.push_back(std::move(f));
+}
+
+void summarizeRun(ModeRun& run) {
   run.frameMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.frameMs; });
   run.gpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.gpuMs; });
   run.cpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuMs(); });
@@ -89,7 +70,48 @@ ModeRun runMode(vk::Context& context, const PlanetDescription& planet, const Cam
   run.cpuHeightsMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuHeightsMs; });
   for (const std::string& name : run.passNames)
     run.passMs.push_back(summaryOf(run.frames, [&](const FrameRecord& f) { return f.passMs(name); }));
-  return run;
+}
+
+// Every mode flies the path at once, frame by frame in turn, so that a machine that slows down
+// for a while (a busy neighbour, a core taken away) slows every mode alike and the ratios
+// between modes stay fair. Each mode has its own Renderer, so none changes another's work.
+std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
+                              const FrameBenchOptions& options, const FrameBenchProgress& progress) {
+  const std::vector<BenchMode> modes = benchModes(options.compare);
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  std::vector<ModeRun> runs(modes.size());
+  for (size_t m = 0; m < modes.size(); ++m) {
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.fovYDeg = options.fovYDeg;
+    settings.terrain.heightSource = modes[m].heightSource;
+    settings.terrain.limitOctaves = modes[m].limitOctaves;
+    settings.terrain.patches = options.patches;
+    renderers.push_back(std::make_unique<Renderer>(context, planet, settings));
+    runs[m].mode = modes[m];
+  }
+  std::vector<double> lastMs(modes.size(), 0.0);
+  for (int phase = 0; phase < 2; ++phase) {
+    const bool warmup = phase == 0;
+    const uint32_t count = warmup ? options.warmup : options.frames;
+    for (uint32_t i = 0; i < count; ++i) {
+      // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
+      // timed frame's pose, which would let that frame skip its height pass.
+      const double timeS =
+          warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
+      const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
+      for (size_t m = 0; m < modes.size(); ++m) {
+        if (progress) progress(modes[m].name, warmup, i, count, lastMs[m]);
+        const auto start = std::chrono::steady_clock::now();
+        RenderResult result = renderers[m]->render(pose, options.sun);
+        lastMs[m] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (!warmup) addFrame(runs[m], recordFrame(i, timeS, lastMs[m], result));
+      }
+    }
+  }
+  for (ModeRun& run : runs) summarizeRun(run);
+  return runs;
 }
 
 std::string terrainTimeDefinition() {
@@ -274,8 +296,7 @@ FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& pl
   report.pathSource = pathSource;
   report.pathKeys = path.keys.size();
   report.pathDurationS = path.durationS();
-  for (const BenchMode& mode : benchModes(options.compare))
-    report.runs.push_back(runMode(context, planet, path, options, mode, progress));
+  report.runs = runModes(context, planet, path, options, progress);
   return report;
 }
 
