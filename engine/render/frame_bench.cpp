@@ -70,6 +70,11 @@ void summarizeRun(ModeRun& run) {
   run.cpuHeightsMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuHeightsMs; });
   for (const std::string& name : run.passNames)
     run.passMs.push_back(summaryOf(run.frames, [&](const FrameRecord& f) { return f.passMs(name); }));
+  run.minMetresPerVertexAtNadir = run.frames.front().metresPerVertexAtNadir;
+  for (const FrameRecord& f : run.frames)
+    run.minMetresPerVertexAtNadir = std::min(run.minMetresPerVertexAtNadir, f.metresPerVertexAtNadir);
+  run.trianglesMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.triangles; }).median;
+  run.verticesEvaluatedMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median;
 }
 
 // Every mode flies the path at once, frame by frame in turn, so that a machine that slows down
@@ -139,12 +144,6 @@ double FrameRecord::passMs(const std::string& name) const {
   return sum;
 }
 
-double FrameRecord::passSumMs() const {
-  double sum = 0.0;
-  for (const vk::GpuTiming& t : passes) sum += t.milliseconds;
-  return sum;
-}
-
 double FrameRecord::terrainMs() const {
   double sum = cpuHeightsMs;
   for (const char* pass : kTerrainTimePasses) sum += passMs(pass);
@@ -181,13 +180,9 @@ nlohmann::json FrameBenchReport::toJson() const {
   for (size_t p = 0; p < main.passNames.size(); ++p) j["passes"][main.passNames[p]] = planet::toJson(main.passMs[p]);
   j["terrain_ms"] = planet::toJson(main.terrainMs);
   j["terrain_ms_is"] = terrainTimeDefinition();
-  double minSpacing = main.frames.front().metresPerVertexAtNadir;
-  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
-  j["nadir_m_per_vertex_min"] = minSpacing;
-  j["triangles_median"] =
-      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median));
-  j["vertices_evaluated_median"] =
-      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median));
+  j["nadir_m_per_vertex_min"] = main.minMetresPerVertexAtNadir;
+  j["triangles_median"] = uint64_t(std::llround(main.trianglesMedian));
+  j["vertices_evaluated_median"] = uint64_t(std::llround(main.verticesEvaluatedMedian));
   j["compare"] = nlohmann::json::object();
   j["modes"] = nlohmann::json::object();
   for (const ModeRun& run : runs) {
@@ -261,13 +256,10 @@ std::string FrameBenchReport::table() const {
   row("CPU (frame - GPU)", main.cpuMs);
   for (size_t p = 0; p < main.passNames.size(); ++p) row("  pass " + main.passNames[p], main.passMs[p]);
   row("terrain time", main.terrainMs);
-  double minSpacing = main.frames.front().metresPerVertexAtNadir;
-  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
   out += fmt::format("\nframes per second (median frame): {:.2f}\n", 1000.0 / main.frameMs.median);
-  out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", minSpacing);
-  out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n",
-                     summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median,
-                     summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median);
+  out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", main.minMetresPerVertexAtNadir);
+  out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n", main.trianglesMedian,
+                     main.verticesEvaluatedMedian);
   out += fmt::format("terrain time = {}\n", terrainTimeDefinition());
   if (runs.size() > 1) {
     out += fmt::format("\ncompare: median terrain time over {}'s ({:.2f} ms)\n", main.mode.name, main.terrainMs.median);

@@ -73,7 +73,6 @@ struct FrameRecord {
   double metresPerVertexAtNadir = 0.0;
 
   double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
-  double passSumMs() const;                      // every GPU pass
   double terrainMs() const;                      // kTerrainTimePasses + cpuHeightsMs
   double cpuMs() const { return frameMs - gpuMs; }
 };
@@ -85,6 +84,9 @@ struct ModeRun {
   // Statistics over the timed frames; a pass that did not run in a frame counts 0 ms there.
   Summary frameMs, gpuMs, cpuMs, terrainMs, cpuHeightsMs;
   std::vector<Summary> passMs;  // per passNames
+  double minMetresPerVertexAtNadir = 0.0;
+  double trianglesMedian = 0.0;
+  double verticesEvaluatedMedian = 0.0;
 };
 
 struct FrameBenchReport {
