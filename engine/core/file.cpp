@@ -29,4 +29,17 @@ void writeFileAtomic(const std::string& path, std::string_view contents) {
   }
 }
 
+std::string readFileUpTo(const std::string& path, size_t limit) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw Error("cannot read '" + path + "': " + std::strerror(errno));
+  std::string text(limit + 1, '\0');
+  const size_t size = std::fread(text.data(), 1, text.size(), file);
+  const bool failed = std::ferror(file);
+  const int readErrno = errno;
+  std::fclose(file);
+  if (failed) throw Error("cannot read '" + path + "': " + std::strerror(readErrno));
+  text.resize(size);
+  return text;
+}
+
 }  // namespace planet

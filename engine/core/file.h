@@ -2,6 +2,7 @@
 // renamed over it, so an error or a crash never leaves a half-written file.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -9,5 +10,10 @@ namespace planet {
 
 // Throws planet::Error naming the path and the system's reason on failure.
 void writeFileAtomic(const std::string& path, std::string_view contents);
+
+// The contents of a file, at most limit + 1 bytes: a result longer than `limit` tells the caller
+// the file is too large without reading all of it. Throws planet::Error ("cannot read 'path':
+// reason") when the file cannot be opened or read.
+std::string readFileUpTo(const std::string& path, size_t limit);
 
 }  // namespace planet

@@ -2,18 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "core/error.h"
+#include "core/file.h"
 
 namespace planet {
 namespace {
@@ -562,14 +559,8 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
 }
 
 PlanetDescription loadPlanetDescription(const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
-  if (!file) throw Error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
-  // One byte past the limit tells "too large" from "exactly at the limit".
-  std::string text(kMaxPresetBytes + 1, '\0');
-  size_t size = std::fread(text.data(), 1, text.size(), file.get());
-  if (std::ferror(file.get())) throw Error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
-  text.resize(size);
-  return parsePlanetDescription(text, path);
+  // One byte past the limit tells "too large" (parsePlanetDescription says so) from "exactly at it".
+  return parsePlanetDescription(readFileUpTo(path, kMaxPresetBytes), path);
 }
 
 std::vector<std::string> presetNames() {

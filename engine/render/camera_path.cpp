@@ -1,17 +1,14 @@
 #include "render/camera_path.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <memory>
 #include <numbers>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/file.h"
 #include "planet/terrain_height.h"
 
 namespace planet {
@@ -125,14 +122,8 @@ CameraPath parseCameraPath(std::string_view text, std::string_view sourceName) {
 }
 
 CameraPath loadCameraPath(const std::string& file) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.c_str(), "rb"), std::fclose);
-  if (!in) throw Error(fmt::format("cannot read '{}': {}", file, std::strerror(errno)));
-  // One byte past the limit tells "too large" from "exactly at the limit".
-  std::string text(kMaxPathBytes + 1, '\0');
-  const size_t size = std::fread(text.data(), 1, text.size(), in.get());
-  if (std::ferror(in.get())) throw Error(fmt::format("cannot read '{}': {}", file, std::strerror(errno)));
-  if (size > kMaxPathBytes) throw Error(fmt::format("{}: larger than {} bytes", file, kMaxPathBytes));
-  text.resize(size);
+  const std::string text = readFileUpTo(file, kMaxPathBytes);
+  if (text.size() > kMaxPathBytes) throw Error(fmt::format("{}: larger than {} bytes", file, kMaxPathBytes));
   return parseCameraPath(text, file);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -25,63 +26,43 @@ Summary summaryOf(const std::vector<FrameRecord>& frames, Fn value) {
   return summarize(values);
 }
 
-ModeRun runMode(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
-                const FrameBenchOptions& options, const BenchMode& mode, const FrameBenchProgress& progress) {
-  RenderSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.fovYDeg = options.fovYDeg;
-  settings.terrain.heightSource = mode.heightSource;
-  settings.terrain.limitOctaves = mode.limitOctaves;
-  settings.terrain.patches = options.patches;
-  Renderer renderer(context, planet, settings);
-  ModeRun run;
-  run.mode = mode;
-  double lastMs = 0.0;
-  for (int phase = 0; phase < 2; ++phase) {
-    const bool warmup = phase == 0;
-    const uint32_t count = warmup ? options.warmup : options.frames;
-    for (uint32_t i = 0; i < count; ++i) {
-      if (progress) progress(mode.name, warmup, i, count, lastMs);
-      // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
-      // timed frame's pose, which would let that frame skip its height pass.
-      const double timeS =
-          warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
-      const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
-      const auto start = std::chrono::steady_clock::now();
-      RenderResult result = renderer.render(pose, options.sun);
-      lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      if (warmup) continue;
-      FrameRecord f;
-      f.index = i;
-      f.pathTimeS = timeS;
-      f.camera = result.camera;
-      f.heightAboveGroundM = result.terrain.heightAboveGroundM;
-      f.frameMs = lastMs;
-      f.passes = std::move(result.timings);
-      if (!f.passes.empty()) {
-        double first = f.passes.front().startMs, last = first;
-        for (const vk::GpuTiming& t : f.passes) {
-          first = std::min(first, t.startMs);
-          last = std::max(last, t.startMs + t.milliseconds);
-        }
-        f.gpuMs = last - first;
-      }
-      f.cpuHeightsMs = result.terrain.cpuHeightsMs;
-      f.triangles = result.terrain.triangles;
-      f.verticesEvaluated = result.terrain.verticesEvaluated;
-      f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
-      // A pass seen for the first time goes after the pass recorded before it in this frame, so
-      // that the list keeps recording order when the first frames skip a pass.
-      auto after = run.passNames.begin();
-      for (const vk::GpuTiming& t : f.passes) {
-        auto found = std::find(run.passNames.begin(), run.passNames.end(), t.name);
-        if (found == run.passNames.end()) found = run.passNames.insert(after, t.name);
-        after = found + 1;
-      }
-      run.frames.push_back(std::move(f));
+// One frame of one mode, as the benchmark records it.
+FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResult& result) {
+  FrameRecord f;
+  f.index = index;
+  f.pathTimeS = timeS;
+  f.camera = result.camera;
+  f.heightAboveGroundM = result.terrain.heightAboveGroundM;
+  f.frameMs = frameMs;
+  f.passes = std::move(result.timings);
+  if (!f.passes.empty()) {
+    double first = f.passes.front().startMs, last = first;
+    for (const vk::GpuTiming& t : f.passes) {
+      first = std::min(first, t.startMs);
+      last = std::max(last, t.startMs + t.milliseconds);
     }
+    f.gpuMs = last - first;
   }
+  f.cpuHeightsMs = result.terrain.cpuHeightsMs;
+  f.triangles = result.terrain.triangles;
+  f.verticesEvaluated = result.terrain.verticesEvaluated;
+  f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
+  return f;
+}
+
+void addFrame(ModeRun& run, FrameRecord f) {
+  // A pass seen for the first time goes after the pass recorded before it in this frame, so
+  // that the list keeps recording order when the first frames skip a pass.
+  auto after = run.passNames.begin();
+  for (const vk::GpuTiming& t : f.passes) {
+    auto found = std::find(run.passNames.begin(), run.passNames.end(), t.name);
+    if (found == run.passNames.end()) found = run.passNames.insert(after, t.name);
+    after = found + 1;
+  }
+  run.frames.push_back(std::move(f));
+}
+
+void summarizeRun(ModeRun& run) {
   run.frameMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.frameMs; });
   run.gpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.gpuMs; });
   run.cpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuMs(); });
@@ -89,7 +70,53 @@ ModeRun runMode(vk::Context& context, const PlanetDescription& planet, const Cam
   run.cpuHeightsMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuHeightsMs; });
   for (const std::string& name : run.passNames)
     run.passMs.push_back(summaryOf(run.frames, [&](const FrameRecord& f) { return f.passMs(name); }));
-  return run;
+  run.minMetresPerVertexAtNadir = run.frames.front().metresPerVertexAtNadir;
+  for (const FrameRecord& f : run.frames)
+    run.minMetresPerVertexAtNadir = std::min(run.minMetresPerVertexAtNadir, f.metresPerVertexAtNadir);
+  run.trianglesMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.triangles; }).median;
+  run.verticesEvaluatedMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median;
+}
+
+// Every mode flies the path at once, frame by frame in turn, so that a machine that slows down
+// for a while (a busy neighbour, a core taken away) slows every mode alike and the ratios
+// between modes stay fair. Each mode has its own Renderer, so none changes another's work.
+std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
+                              const FrameBenchOptions& options, const FrameBenchProgress& progress) {
+  const std::vector<BenchMode> modes = benchModes(options.compare);
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  std::vector<ModeRun> runs(modes.size());
+  for (size_t m = 0; m < modes.size(); ++m) {
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.fovYDeg = options.fovYDeg;
+    settings.terrain.heightSource = modes[m].heightSource;
+    settings.terrain.limitOctaves = modes[m].limitOctaves;
+    settings.terrain.patches = options.patches;
+    renderers.push_back(std::make_unique<Renderer>(context, planet, settings));
+    runs[m].mode = modes[m];
+  }
+  std::vector<double> lastMs(modes.size(), 0.0);
+  for (int phase = 0; phase < 2; ++phase) {
+    const bool warmup = phase == 0;
+    const uint32_t count = warmup ? options.warmup : options.frames;
+    for (uint32_t i = 0; i < count; ++i) {
+      // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
+      // timed frame's pose, which would let that frame skip its height pass.
+      const double timeS =
+          warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
+      const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
+      for (size_t m = 0; m < modes.size(); ++m) {
+        if (progress) progress(modes[m].name, warmup, i, count, lastMs[m]);
+        const auto start = std::chrono::steady_clock::now();
+        RenderResult result = renderers[m]->render(pose, options.sun);
+        lastMs[m] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (!warmup) addFrame(runs[m], recordFrame(i, timeS, lastMs[m], result));
+      }
+    }
+  }
+  for (ModeRun& run : runs) summarizeRun(run);
+  return runs;
 }
 
 std::string terrainTimeDefinition() {
@@ -114,12 +141,6 @@ double FrameRecord::passMs(const std::string& name) const {
   double sum = 0.0;
   for (const vk::GpuTiming& t : passes)
     if (t.name == name) sum += t.milliseconds;
-  return sum;
-}
-
-double FrameRecord::passSumMs() const {
-  double sum = 0.0;
-  for (const vk::GpuTiming& t : passes) sum += t.milliseconds;
   return sum;
 }
 
@@ -159,13 +180,9 @@ nlohmann::json FrameBenchReport::toJson() const {
   for (size_t p = 0; p < main.passNames.size(); ++p) j["passes"][main.passNames[p]] = planet::toJson(main.passMs[p]);
   j["terrain_ms"] = planet::toJson(main.terrainMs);
   j["terrain_ms_is"] = terrainTimeDefinition();
-  double minSpacing = main.frames.front().metresPerVertexAtNadir;
-  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
-  j["nadir_m_per_vertex_min"] = minSpacing;
-  j["triangles_median"] =
-      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median));
-  j["vertices_evaluated_median"] =
-      uint64_t(std::llround(summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median));
+  j["nadir_m_per_vertex_min"] = main.minMetresPerVertexAtNadir;
+  j["triangles_median"] = uint64_t(std::llround(main.trianglesMedian));
+  j["vertices_evaluated_median"] = uint64_t(std::llround(main.verticesEvaluatedMedian));
   j["compare"] = nlohmann::json::object();
   j["modes"] = nlohmann::json::object();
   for (const ModeRun& run : runs) {
@@ -239,13 +256,10 @@ std::string FrameBenchReport::table() const {
   row("CPU (frame - GPU)", main.cpuMs);
   for (size_t p = 0; p < main.passNames.size(); ++p) row("  pass " + main.passNames[p], main.passMs[p]);
   row("terrain time", main.terrainMs);
-  double minSpacing = main.frames.front().metresPerVertexAtNadir;
-  for (const FrameRecord& f : main.frames) minSpacing = std::min(minSpacing, f.metresPerVertexAtNadir);
   out += fmt::format("\nframes per second (median frame): {:.2f}\n", 1000.0 / main.frameMs.median);
-  out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", minSpacing);
-  out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n",
-                     summaryOf(main.frames, [](const FrameRecord& f) { return f.triangles; }).median,
-                     summaryOf(main.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median);
+  out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", main.minMetresPerVertexAtNadir);
+  out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n", main.trianglesMedian,
+                     main.verticesEvaluatedMedian);
   out += fmt::format("terrain time = {}\n", terrainTimeDefinition());
   if (runs.size() > 1) {
     out += fmt::format("\ncompare: median terrain time over {}'s ({:.2f} ms)\n", main.mode.name, main.terrainMs.median);
@@ -274,8 +288,7 @@ FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& pl
   report.pathSource = pathSource;
   report.pathKeys = path.keys.size();
   report.pathDurationS = path.durationS();
-  for (const BenchMode& mode : benchModes(options.compare))
-    report.runs.push_back(runMode(context, planet, path, options, mode, progress));
+  report.runs = runModes(context, planet, path, options, progress);
   return report;
 }
 

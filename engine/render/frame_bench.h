@@ -2,8 +2,9 @@
 // timed frame records its wall-clock time, the GPU time of every pass the Renderer timed (so
 // passes added to the Renderer are measured without changes here), the span from the first
 // timestamp to the last, and what the terrain decided (triangles, vertices evaluated, metres
-// per vertex at the nadir). With `compare`, the same path is flown again with each other way
-// of producing the vertex heights and with octave limiting off, and each is reported as a
+// per vertex at the nadir). With `compare`, the same frames are also rendered with each other
+// way of producing the vertex heights and with octave limiting off (every mode takes its turn
+// at each frame, so that a machine slowing down affects all alike), and each is reported as a
 // ratio of its median terrain time to the default's.
 #pragma once
 
@@ -72,7 +73,6 @@ struct FrameRecord {
   double metresPerVertexAtNadir = 0.0;
 
   double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
-  double passSumMs() const;                      // every GPU pass
   double terrainMs() const;                      // kTerrainTimePasses + cpuHeightsMs
   double cpuMs() const { return frameMs - gpuMs; }
 };
@@ -84,6 +84,9 @@ struct ModeRun {
   // Statistics over the timed frames; a pass that did not run in a frame counts 0 ms there.
   Summary frameMs, gpuMs, cpuMs, terrainMs, cpuHeightsMs;
   std::vector<Summary> passMs;  // per passNames
+  double minMetresPerVertexAtNadir = 0.0;
+  double trianglesMedian = 0.0;
+  double verticesEvaluatedMedian = 0.0;
 };
 
 struct FrameBenchReport {

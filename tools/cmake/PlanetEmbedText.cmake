@@ -1,4 +1,4 @@
-# Text files embedded in the binary (built-in presets): no runtime file lookup.
+# Text files embedded in the binary (built-in presets, the plot script): no runtime file lookup.
 #
 # planet_embed_text(OUTPUT <header> NAMESPACE <ns> FILES <file ...> [STRUCT <name>])
 # generates <header> with
