@@ -16,7 +16,9 @@
 
 layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 
-layout(std140, set = 0, binding = kSkyBindingUniforms) uniform Uniforms { SkyUniforms sky; };
+// A storage buffer, not a uniform buffer (why: engine/render/sky_pass.cpp, kComposeBindings).
+// SkyUniforms has only vec4 and mat4 members, so std430 lays it out as std140 would.
+layout(std430, set = 0, binding = kSkyBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
 layout(set = 0, binding = kSkyBindingColor, rgba16f) uniform image2D color;
 layout(set = 0, binding = kSkyBindingDepth) uniform sampler2D depthBuffer;
 layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmittanceTable;

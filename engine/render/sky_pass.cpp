@@ -20,8 +20,13 @@
 namespace planet {
 namespace {
 
+// The compose pass reads its per-frame values from a storage buffer, not a uniform buffer:
+// lavapipe (Mesa 22.3) folds uniform-buffer values that steer branches and loops into the
+// shader, compiling a new variant at every dispatch whose values changed and never freeing the
+// old one (+1 MB of process memory and a shader-cache lookup per frame, measured; the
+// recompile costs ~400 ms when the shader cache is off). Storage buffers are not folded.
 constexpr VkDescriptorType kComposeBindings[] = {
-    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // uniforms
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // per-frame values (SkyUniforms)
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // HDR colour
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // depth
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
@@ -42,17 +47,21 @@ uint32_t detailSeedMix(uint32_t seed) {
   return noise::toNoiseParams(settings).seedMix;
 }
 
+void validateSkySettings(const SkySettings& settings) {
+  if (settings.viewSamples < 2 || settings.viewSamples > 256)
+    throw Error(fmt::format("atmosphere samples {} are outside 2..256", settings.viewSamples));
+  if (!(settings.exposure > 0.0 && std::isfinite(settings.exposure)))
+    throw Error(fmt::format("exposure {} must be a positive number", settings.exposure));
+}
+
 }  // namespace
 
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
                  const SkySettings& settings, VkFormat outputFormat)
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
-  if (settings.viewSamples < 2 || settings.viewSamples > 256)
-    throw Error(fmt::format("atmosphere samples {} are outside 2..256", settings.viewSamples));
-  if (!(settings.exposure > 0.0 && std::isfinite(settings.exposure)))
-    throw Error(fmt::format("exposure {} must be a positive number", settings.exposure));
+  validateSkySettings(settings);
   try {
-    uniforms_ = vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+    uniforms_ = vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                  vk::MemoryUsage::Upload);
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = VK_FILTER_NEAREST;
@@ -64,7 +73,7 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
     composeSet_ = vk::allocateSet(context, composePool_, composeSetLayout_);
     composeLayout_ = vk::createPipelineLayout(context, composeSetLayout_, 0, 0);
     composePipeline_ = vk::createComputePipelineWithLayout(context, kSpv_sky_comp, composeLayout_);
-    vk::writeBufferDescriptor(context, composeSet_, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+    vk::writeBufferDescriptor(context, composeSet_, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                               uniforms_);
     vk::writeImageDescriptor(context, composeSet_, gpu::kSkyBindingTransmittance,
                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, tables.transmittanceView(),
@@ -122,6 +131,11 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
                            VK_IMAGE_LAYOUT_GENERAL);
   width_ = hdr.extent.width;
   height_ = hdr.extent.height;
+}
+
+void SkyPass::setSettings(const SkySettings& settings) {
+  validateSkySettings(settings);
+  settings_ = settings;
 }
 
 void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height) {

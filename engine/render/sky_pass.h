@@ -63,6 +63,9 @@ class SkyPass {
   void recordTonemap(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   const SkySettings& settings() const { return settings_; }
+  // Takes effect at the next prepare() (every field is a per-frame uniform); throws
+  // planet::Error for samples outside 2..256 or a non-positive exposure.
+  void setSettings(const SkySettings& settings);
 
  private:
   void release();
