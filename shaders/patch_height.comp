@@ -9,24 +9,8 @@
 
 layout(local_size_x = kPatchWorkgroupSize, local_size_y = kPatchWorkgroupSize) in;
 
-// The planet's layer count, types and hashes (kPatchSpec*): one pipeline per planet.
-layout(constant_id = 0) const uint kSpecLayerCount = 1u;
-layout(constant_id = 1) const uint kSpecType0 = 1u;
-layout(constant_id = 2) const uint kSpecType1 = 1u;
-layout(constant_id = 3) const uint kSpecType2 = 1u;
-layout(constant_id = 4) const uint kSpecType3 = 1u;
-layout(constant_id = 5) const uint kSpecType4 = 1u;
-layout(constant_id = 6) const uint kSpecType5 = 1u;
-layout(constant_id = 7) const uint kSpecType6 = 1u;
-layout(constant_id = 8) const uint kSpecType7 = 1u;
-layout(constant_id = 9) const uint kSpecHash0 = 0u;
-layout(constant_id = 10) const uint kSpecHash1 = 0u;
-layout(constant_id = 11) const uint kSpecHash2 = 0u;
-layout(constant_id = 12) const uint kSpecHash3 = 0u;
-layout(constant_id = 13) const uint kSpecHash4 = 0u;
-layout(constant_id = 14) const uint kSpecHash5 = 0u;
-layout(constant_id = 15) const uint kSpecHash6 = 0u;
-layout(constant_id = 16) const uint kSpecHash7 = 0u;
+// The planet's layer count, types and hashes: one pipeline per planet.
+#include "terrain_layer_specialization.glsl"
 
 layout(std430, set = 0, binding = kPatchBindingLevel) readonly buffer Level {
   PatchLevelParams level;

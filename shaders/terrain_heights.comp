@@ -4,9 +4,13 @@
 // evaluates the planet's noise stack through the rebased octave tables, limited to the
 // octaves its ring's spacing can show (RingBudget), and stores the vertex's position as an
 // offset from the anchor in the local frame. See shaders/shared/render_params.h for frames;
-// the per-vertex functions are in terrain_surface.glsl.
+// the per-vertex functions are in terrain_vertex_surface.glsl.
+// The layers' count, types and hashes are specialization constants (one pipeline per planet),
+// so that lavapipe, which runs every side of a branch, evaluates only each layer's own fractal.
 #extension GL_GOOGLE_include_directive : require
 
+#include "terrain_layer_specialization.glsl"
+#define TERRAIN_SPECIALIZED_LAYERS
 #include "terrain_vertex_surface.glsl"
 
 layout(local_size_x = kTerrainComputeWorkgroupSize) in;
@@ -16,12 +20,20 @@ layout(std430, set = 0, binding = kRenderBindingAttributes) writeonly buffer Att
 
 void main() {
   uint invocation = gl_GlobalInvocationID.x;
-  if (invocation > push.vertexCount) return;
+  // No early return: lavapipe turns loads with uniform addresses (layer parameters, octave
+  // tables) into one scalar load only outside control flow. Invocations past the pole redo the
+  // pole and store nothing.
+  bool inRange = invocation <= push.vertexCount;
   // The last invocation handles the pole (vertex ringCount · numPhi).
-  uint index = invocation == push.vertexCount ? push.ringCount * push.numPhi : push.firstVertex + invocation;
+  uint pole = push.ringCount * push.numPhi;
+  uint index = invocation >= push.vertexCount ? pole : push.firstVertex + invocation;
   MeshVertex v = mesh[index];
   vec3 offsetLocal = surfaceOffsetLocal(v);
   vec3 offsetPlanet = mat3(frame.localToPlanet) * offsetLocal;
-  surface[index] = vec4(offsetLocal, surfaceHeight(offsetPlanet, floatBitsToUint(v.polar.z)));
-  attributes[index] = surfaceAttributes(offsetPlanet);
+  vec4 surfaceValue = vec4(offsetLocal, surfaceHeight(offsetPlanet, floatBitsToUint(v.polar.z)));
+  vec4 attributeValue = surfaceAttributes(offsetPlanet);
+  if (inRange) {
+    surface[index] = surfaceValue;
+    attributes[index] = attributeValue;
+  }
 }

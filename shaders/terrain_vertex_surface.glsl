@@ -3,7 +3,8 @@
 // its shading attributes. Written once for the two GPU height sources of the terrain pass:
 // terrain_heights.comp (HeightSource::Compute, the design) and terrain_noise.vert
 // (HeightSource::VertexShader, seed 002's design, kept for `planet bench --compare`).
-// The includer declares nothing of its own before this file; `push` is the frame's
+// The includer declares nothing of its own before this file (but the specialization constants
+// of terrain_layer_specialization.glsl, see surfaceHeight); `push` is the frame's
 // TerrainComputePush in both.
 #ifndef PLANET_TERRAIN_VERTEX_SURFACE_GLSL
 #define PLANET_TERRAIN_VERTEX_SURFACE_GLSL
@@ -47,25 +48,46 @@ vec3 surfaceOffsetLocal(MeshVertex v) {
   return frame.camera.y * vec3(s * cos(phi), s * sin(phi), -2.0f * h2 * h2);
 }
 
+// Layer l's noise at the point `offsetPlanet` (planet frame, metres from the anchor) as fractal
+// `type` with lattice hash `hash`, with the octaves of `budget` (its amplitude not applied).
+float layerNoise(uint l, uint type, uint hash, vec3 offsetPlanet, RingBudget budget) {
+  gPermutationBase = l * kNoisePermutationSize;
+  NoiseParams params = layers[l].noise;
+  params.type = type;
+  params.hash = hash;
+  params.octaves = budget.octaves[l];
+  params.lastOctaveWeight = budget.lastOctaveWeight[l];
+  OctaveWalk walk;
+  walk.q = vec3(0.0f);
+  walk.lacunarity = params.lacunarity;
+  walk.offset = offsetPlanet;
+  walk.layer = l;
+  walk.octave = 0u;
+  walk.rebased = 1u;
+  return fractalNoise(params, walk);
+}
+
 // Height in metres above the radius sphere at the point `offsetPlanet` (planet frame, metres
-// from the anchor), with the octaves of ring `ring`.
+// from the anchor), with the octaves of ring `ring`. An includer that defines
+// TERRAIN_SPECIALIZED_LAYERS (and includes terrain_layer_specialization.glsl first) gets the
+// layers' count, types and hashes from specialization constants; otherwise from the buffer.
 float surfaceHeight(vec3 offsetPlanet, uint ring) {
   RingBudget budget = budgets[ring];
   precise float sum = push.baseHeightM;
-  for (uint l = 0u; l < push.layerCount; ++l) {
-    gPermutationBase = l * kNoisePermutationSize;
-    NoiseParams params = layers[l].noise;
-    params.octaves = budget.octaves[l];
-    params.lastOctaveWeight = budget.lastOctaveWeight[l];
-    OctaveWalk walk;
-    walk.q = vec3(0.0f);
-    walk.lacunarity = params.lacunarity;
-    walk.offset = offsetPlanet;
-    walk.layer = l;
-    walk.octave = 0u;
-    walk.rebased = 1u;
-    sum += layers[l].amplitudeM * fractalNoise(params, walk);
-  }
+#ifdef TERRAIN_SPECIALIZED_LAYERS
+  // The layers in order, as terrainHeightM sums them; the constant conditions fold away.
+  if (kSpecLayerCount > 0u) sum += layers[0].amplitudeM * layerNoise(0u, kSpecType0, kSpecHash0, offsetPlanet, budget);
+  if (kSpecLayerCount > 1u) sum += layers[1].amplitudeM * layerNoise(1u, kSpecType1, kSpecHash1, offsetPlanet, budget);
+  if (kSpecLayerCount > 2u) sum += layers[2].amplitudeM * layerNoise(2u, kSpecType2, kSpecHash2, offsetPlanet, budget);
+  if (kSpecLayerCount > 3u) sum += layers[3].amplitudeM * layerNoise(3u, kSpecType3, kSpecHash3, offsetPlanet, budget);
+  if (kSpecLayerCount > 4u) sum += layers[4].amplitudeM * layerNoise(4u, kSpecType4, kSpecHash4, offsetPlanet, budget);
+  if (kSpecLayerCount > 5u) sum += layers[5].amplitudeM * layerNoise(5u, kSpecType5, kSpecHash5, offsetPlanet, budget);
+  if (kSpecLayerCount > 6u) sum += layers[6].amplitudeM * layerNoise(6u, kSpecType6, kSpecHash6, offsetPlanet, budget);
+  if (kSpecLayerCount > 7u) sum += layers[7].amplitudeM * layerNoise(7u, kSpecType7, kSpecHash7, offsetPlanet, budget);
+#else
+  for (uint l = 0u; l < push.layerCount; ++l)
+    sum += layers[l].amplitudeM * layerNoise(l, layers[l].noise.type, layers[l].noise.hash, offsetPlanet, budget);
+#endif
   return push.heightScale * sum;
 }
 

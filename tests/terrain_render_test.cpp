@@ -218,6 +218,134 @@ TEST_F(TerrainRender, TwoMetresAboveTheGroundVerticesAreDenserThanHalfAMetre) {
   EXPECT_LT(result.terrain.poleCapRadiusM, 4.0 * pixelM);
 }
 
+// Freeze-LOD (the viewer's debug view): the mesh of the frame before freezing stays, drawn from
+// wherever the camera goes; without the freeze the LOD follows the camera.
+TEST_F(TerrainRender, FrozenLodKeepsTheMeshAndDrawsItFromTheMovedCamera) {
+  PlanetDescription planet = resolvePreset("moon");  // no air, no ocean: lit pixels are ground
+  planet.stars.enabled = false;
+  Renderer renderer(context(), planet, smallSettings(true));
+  TerrainPass& terrain = renderer.terrain();
+  const SunPose sun{0.0, 60.0};
+  const CameraPose start{-20.0, 40.0, 3000.0, 0.0, -90.0};
+  const RenderResult before = renderer.render(start, sun);
+  EXPECT_FALSE(before.terrain.lodFrozen);
+
+  terrain.setFreezeLod(true);
+  EXPECT_TRUE(terrain.freezeLod());
+  // Frozen where it was: the same frame, nothing recomputed, the same picture.
+  const RenderResult same = renderer.render(start, sun);
+  EXPECT_TRUE(same.terrain.lodFrozen);
+  EXPECT_FALSE(same.terrain.heightsComputed);
+  EXPECT_EQ(same.image.pixels, before.image.pixels);
+
+  auto expectFrozen = [&](const TerrainFrameInfo& frame, const char* what) {
+    EXPECT_TRUE(frame.lodFrozen) << what;
+    EXPECT_EQ(frame.rings.firstRing, before.terrain.rings.firstRing) << what;
+    EXPECT_EQ(frame.rings.lastRing, before.terrain.rings.lastRing) << what;
+    EXPECT_EQ(frame.orientation.localToPlanet, before.terrain.orientation.localToPlanet) << what;
+    EXPECT_EQ(frame.metresPerVertexAtNadir, before.terrain.metresPerVertexAtNadir) << what;
+    EXPECT_EQ(frame.patchLayout.levels[0].originA, before.terrain.patchLayout.levels[0].originA) << what;
+    EXPECT_FALSE(frame.heightsComputed) << what;
+    EXPECT_EQ(frame.patchLevelsRebuilt, 0u) << what;
+  };
+
+  // Ten times higher, still looking down: the frozen cap (cut for 3 km) fills the view.
+  const CameraPose high{start.latitudeDeg, start.longitudeDeg, 10.0 * start.altitudeM, 0.0, -90.0};
+  const RenderResult frozenHigh = renderer.render(high, sun);
+  expectFrozen(frozenHigh.terrain, "high");
+  EXPECT_NEAR(frozenHigh.terrain.viewOrientation.altitudeM, high.altitudeM, 1e-6);
+  EXPECT_EQ(litFraction(frozenHigh.image, 10.0), 1.0);
+  EXPECT_EQ(litFraction(frozenHigh.image, 40.0), 1.0);
+  EXPECT_NE(frozenHigh.image.pixels, before.image.pixels);
+
+  // Sideways by 600 m, looking ahead and down: the frozen mesh seen from there shows what the
+  // LOD chosen there shows (the same ground, slightly different vertices), unlike the view
+  // from where the LOD was frozen.
+  const CameraPose side{start.latitudeDeg, start.longitudeDeg + 0.02, start.altitudeM, 60.0, -35.0};
+  const CameraPose sideFromStart{start.latitudeDeg, start.longitudeDeg, start.altitudeM, 60.0, -35.0};
+  const RenderResult frozenSide = renderer.render(side, sun);
+  expectFrozen(frozenSide.terrain, "side");
+  terrain.setFreezeLod(false);
+  const RenderResult liveSide = renderer.render(side, sun);
+  EXPECT_FALSE(liveSide.terrain.lodFrozen);
+  EXPECT_TRUE(liveSide.terrain.heightsComputed);
+  EXPECT_NE(liveSide.terrain.orientation.localToPlanet, before.terrain.orientation.localToPlanet);
+  const RenderResult liveSideFromStart = renderer.render(sideFromStart, sun);
+  const double psnrSide = psnrRgb(frozenSide.image, liveSide.image);
+  const double psnrWrong = psnrRgb(frozenSide.image, liveSideFromStart.image);
+  std::printf("frozen view from 600 m aside: PSNR %.1f dB against the live view there, %.1f dB against the start\n",
+              psnrSide, psnrWrong);
+  EXPECT_GT(psnrSide, 30.0);
+  EXPECT_GT(psnrSide, psnrWrong + 6.0);
+
+  // Unfrozen, the LOD follows the camera up.
+  const RenderResult liveHigh = renderer.render(high, sun);
+  EXPECT_FALSE(liveHigh.terrain.lodFrozen);
+  EXPECT_NE(liveHigh.terrain.rings.lastRing, before.terrain.rings.lastRing);
+  EXPECT_GT(liveHigh.terrain.metresPerVertexAtNadir, 5.0 * before.terrain.metresPerVertexAtNadir);
+}
+
+// The viewer's live toggles give the pictures of passes built with those settings, and toggling
+// back gives the first picture again (without rebuilding the patch textures).
+TEST_F(TerrainRender, TogglesDrawWhatTheSettingsWouldHave) {
+  const PlanetDescription planet = resolvePreset("earth");
+  const CameraPose camera{33.8, -90.0, 3500.0, 30.0, -12.0};  // land, coast and sea in view
+  auto renderWith = [&](void (*change)(TerrainSettings&)) {
+    RenderSettings settings = smallSettings(true);
+    change(settings.terrain);
+    Renderer renderer(context(), planet, settings);
+    return renderer.render(camera, {}).image;
+  };
+  const Rgba8Image wireframe = renderWith([](TerrainSettings& t) { t.wireframe = true; });
+  const Rgba8Image dry = renderWith([](TerrainSettings& t) { t.water = false; });
+  const Rgba8Image bright = renderWith([](TerrainSettings& t) {
+    t.sunIntensity = 3.0;
+    t.ambient = 0.2;
+  });
+
+  Renderer renderer(context(), planet, smallSettings(true));
+  TerrainPass& terrain = renderer.terrain();
+  const RenderResult first = renderer.render(camera, {});
+  EXPECT_TRUE(first.terrain.waterDrawn);
+  EXPECT_FALSE(first.terrain.wireframe);
+
+  terrain.setWireframe(true);
+  const RenderResult edges = renderer.render(camera, {});
+  EXPECT_TRUE(edges.terrain.wireframe);
+  EXPECT_FALSE(edges.terrain.waterDrawn);
+  EXPECT_TRUE(edges.terrain.patchLayout.levels.empty());
+  EXPECT_EQ(edges.terrain.patchLevelsRebuilt, 0u);
+  EXPECT_EQ(edges.image.pixels, wireframe.pixels);
+  terrain.setWireframe(false);
+  const RenderResult back = renderer.render(camera, {});
+  EXPECT_EQ(back.terrain.patchLevelsRebuilt, 0u);  // the layout is the one the textures hold
+  EXPECT_EQ(back.image.pixels, first.image.pixels);
+
+  terrain.setWaterEnabled(false);
+  const RenderResult noWater = renderer.render(camera, {});
+  EXPECT_FALSE(noWater.terrain.waterDrawn);
+  EXPECT_EQ(noWater.image.pixels, dry.pixels);
+  terrain.setWaterEnabled(true);
+  EXPECT_EQ(renderer.render(camera, {}).image.pixels, first.image.pixels);
+
+  terrain.setSunIntensity(3.0);
+  terrain.setAmbient(0.2);
+  EXPECT_EQ(renderer.render(camera, {}).image.pixels, bright.pixels);
+  terrain.setSunIntensity(TerrainSettings{}.sunIntensity);
+  terrain.setAmbient(TerrainSettings{}.ambient);
+  EXPECT_EQ(renderer.render(camera, {}).image.pixels, first.image.pixels);
+
+  // A pass that started in wireframe builds its patch textures when the wireframe goes.
+  RenderSettings settings = smallSettings(true);
+  settings.terrain.wireframe = true;
+  Renderer started(context(), planet, settings);
+  EXPECT_EQ(started.render(camera, {}).image.pixels, wireframe.pixels);
+  started.terrain().setWireframe(false);
+  const RenderResult filled = started.render(camera, {});
+  EXPECT_EQ(filled.terrain.patchLevelsRebuilt, 4u);
+  EXPECT_EQ(filled.image.pixels, first.image.pixels);
+}
+
 // Golden images: lavapipe on Debian 12 renders these bit for bit today; the PSNR threshold
 // leaves room for rasteriser rounding in other Mesa versions. Regenerate with
 // PLANET_UPDATE_GOLDEN=1 after an intended change (and look at the pictures).

@@ -6,11 +6,23 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "noise/noise_settings.h"
 #include "noise/permutation.h"
 #include "shared/terrain_params.h"
 #include "vk/context.h"
 
 namespace planet {
+
+std::vector<uint32_t> layerSpecialization(const PlanetDescription& planet) {
+  std::vector<uint32_t> values(gpu::kTerrainSpecCount, 0u);
+  values[gpu::kTerrainSpecLayerCount] = uint32_t(planet.layers.size());
+  for (size_t l = 0; l < planet.layers.size() && l < gpu::kTerrainMaxLayers; ++l) {
+    const gpu::NoiseParams params = noise::toNoiseParams(planet.layers[l].noise);
+    values[gpu::kTerrainSpecTypes + l] = params.type;
+    values[gpu::kTerrainSpecHashes + l] = params.hash;
+  }
+  return values;
+}
 
 PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet)
     : context_(context), planet_(planet) {

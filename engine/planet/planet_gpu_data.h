@@ -3,6 +3,9 @@
 // buffers. The per-frame octave tables (terrain_rebase.h) belong to each pass.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "planet/planet_description.h"
 #include "vk/buffer.h"
 
@@ -11,6 +14,11 @@ class Context;
 }
 
 namespace planet {
+
+// The specialization constants of the shaders that sum the planet's layers (gpu::kTerrainSpec*,
+// shaders/terrain_layer_specialization.glsl): layer count, then each layer's noise type and hash
+// (0 for unused layers), kTerrainSpecCount values.
+std::vector<uint32_t> layerSpecialization(const PlanetDescription& planet);
 
 class PlanetGpuData {
  public:

@@ -9,7 +9,6 @@
 
 #include "core/error.h"
 #include "core/log.h"
-#include "noise/noise_settings.h"
 #include "planet/octave_budget.h"
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_rebase.h"
@@ -45,18 +44,6 @@ uint32_t groupsFor(uint32_t count) { return (count + gpu::kPatchWorkgroupSize - 
 int64_t floorDiv(int64_t value, int64_t step) {
   int64_t quotient = value / step;
   return (value % step != 0 && value < 0) ? quotient - 1 : quotient;
-}
-
-// The height pipeline's specialization constants for the planet's layers (gpu::kPatchSpec*).
-std::vector<uint32_t> specializationFor(const PlanetDescription& planet) {
-  std::vector<uint32_t> values(gpu::kPatchSpecCount, 0u);
-  values[gpu::kPatchSpecLayerCount] = uint32_t(planet.layers.size());
-  for (size_t l = 0; l < planet.layers.size(); ++l) {
-    const gpu::NoiseParams params = noise::toNoiseParams(planet.layers[l].noise);
-    values[gpu::kPatchSpecTypes + l] = params.type;
-    values[gpu::kPatchSpecHashes + l] = params.hash;
-  }
-  return values;
 }
 
 }  // namespace
@@ -147,7 +134,7 @@ void PatchTextures::release() {
 void PatchTextures::createPipelines() {
   vk::destroyComputePipeline(context_, normalPipeline_);
   vk::destroyComputePipeline(context_, heightPipeline_);
-  specialization_ = specializationFor(data_.planet());
+  specialization_ = layerSpecialization(data_.planet());
   const uint32_t sets = settings_.levelCount;
   heightPipeline_ = vk::createComputePipeline(context_, kSpv_patch_height_comp, kBindings, 0, specialization_, sets);
   normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
@@ -255,7 +242,7 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
   // The planet's layer types or hashes changed: the height pipeline is specialized on them.
   // The previous update's command buffer has completed (see the header), so the old pipelines
   // are no longer in use.
-  if (specializationFor(data_.planet()) != specialization_) {
+  if (layerSpecialization(data_.planet()) != specialization_) {
     createPipelines();
     invalidate();
   }

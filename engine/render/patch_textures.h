@@ -106,7 +106,7 @@ class PatchTextures {
   PatchSettings settings_;
   uint32_t tileSize_ = 1;  // texels per tile side
   uint32_t maxTilesPerSide_ = 1;
-  std::vector<uint32_t> specialization_;  // of the height pipeline (gpu::kPatchSpec*)
+  std::vector<uint32_t> specialization_;  // of the height pipeline (layerSpecialization)
   vk::ComputePipeline heightPipeline_;
   vk::ComputePipeline normalPipeline_;
   vk::Image image_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
 #include "planet/octave_budget.h"
@@ -70,17 +71,22 @@ double ringSpacingM(const ClipmapParams& params, double radiusM, uint32_t ring) 
 
 TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
                          VkFormat colorFormat, VkFormat depthFormat, const SkyTables& sky)
-    : context_(context), planet_(planet), settings_(settings), sky_(sky) {
+    : context_(context),
+      planet_(planet),
+      settings_(settings),
+      colorFormat_(colorFormat),
+      depthFormat_(depthFormat),
+      sky_(sky) {
   if (settings.subPixelRings == 0 || settings.subPixelRings > 64)
     throw Error(fmt::format("sub-pixel ring factor {} is outside 1..64", settings.subPixelRings));
-  // Wireframe draws edges only, so patch textures would be built for nothing.
-  if (settings_.wireframe) settings_.patches = false;
   mesh_ = buildClipmapMesh(settings.mesh);
   maxTerrainHeightM_ = estimateMaxTerrainHeightM(planet);
   try {
     data_ = std::make_unique<PlanetGpuData>(context, planet);
+    // Wireframe draws edges only, so full patch textures would be built for nothing (yet).
+    fullPatches_ = settings.patches && !settings.wireframe;
     PatchSettings patchSettings = settings.patchSettings;
-    if (!settings_.patches) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
+    if (!fullPatches_) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
     patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -145,34 +151,25 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
 
     layout_ =
         vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
-    heightsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_heights_comp, layout_);
+    // Specialized on the planet's layers: lavapipe would otherwise run every fractal type and hash.
+    heightsPipeline_ =
+        vk::createComputePipelineWithLayout(context, kSpv_terrain_heights_comp, layout_, layerSpecialization(planet));
     normalsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_);
-    vk::GraphicsPipelineDesc desc;
-    desc.vertexSpirv = kSpv_terrain_vert;
-    desc.fragmentSpirv = kSpv_terrain_frag;
-    desc.layout = layout_;
-    if (settings.heightSource == HeightSource::VertexShader) {
+    if (settings.heightSource == HeightSource::VertexShader)
       noiseDrawLayout_ =
           vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_VERTEX_BIT);
-      desc.vertexSpirv = kSpv_terrain_noise_vert;
-      desc.layout = noiseDrawLayout_;
-    }
-    desc.colorFormat = colorFormat;
-    desc.depthFormat = depthFormat;
-    desc.polygonMode = settings.wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
-    // The mesh's triangles are counter-clockwise seen from outside. The projection's y flip and
-    // Vulkan's y-down framebuffer cancel, so they stay counter-clockwise on screen.
-    desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    desc.cullMode = settings.wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-    drawPipeline_ = vk::createGraphicsPipeline(context, desc);
+    (settings.wireframe ? wireframePipeline_ : fillPipeline_) = createDrawPipeline(settings.wireframe);
     // The sea reads the vertex buffers the compute (or CPU) heights fill; seed 002's design
     // (heights in the vertex shader, a benchmark comparison) has none, so it draws no sea.
-    if (planet.hasOcean && settings_.water && !settings_.wireframe &&
-        settings.heightSource != HeightSource::VertexShader) {
-      // The sea over the ground: premultiplied "over" blending, depth tested and written.
+    if (planet.hasOcean && settings.heightSource != HeightSource::VertexShader) {
+      vk::GraphicsPipelineDesc desc;
       desc.layout = layout_;
       desc.vertexSpirv = kSpv_water_vert;
       desc.fragmentSpirv = kSpv_water_frag;
+      desc.colorFormat = colorFormat;
+      desc.depthFormat = depthFormat;
+      desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // as the ground's (createDrawPipeline)
+      // The sea over the ground: premultiplied "over" blending, depth tested and written.
       desc.alphaBlend = true;
       desc.premultipliedAlpha = true;
       waterPipeline_ = vk::createGraphicsPipeline(context, desc);
@@ -185,17 +182,52 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
 
 TerrainPass::~TerrainPass() { release(); }
 
+VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
+  vk::GraphicsPipelineDesc desc;
+  desc.vertexSpirv = kSpv_terrain_vert;
+  desc.fragmentSpirv = kSpv_terrain_frag;
+  desc.layout = layout_;
+  if (noiseDrawLayout_) {  // HeightSource::VertexShader
+    desc.vertexSpirv = kSpv_terrain_noise_vert;
+    desc.layout = noiseDrawLayout_;
+  }
+  desc.colorFormat = colorFormat_;
+  desc.depthFormat = depthFormat_;
+  desc.polygonMode = wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
+  // The mesh's triangles are counter-clockwise seen from outside. The projection's y flip and
+  // Vulkan's y-down framebuffer cancel, so they stay counter-clockwise on screen.
+  desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  desc.cullMode = wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+  return vk::createGraphicsPipeline(context_, desc);
+}
+
+void TerrainPass::buildForToggles() {
+  VkPipeline& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
+  if (!draw) draw = createDrawPipeline(settings_.wireframe);
+  if (settings_.patches && !settings_.wireframe && !fullPatches_) {
+    // The pass started in wireframe with a stand-in. The previous frame has completed (see
+    // prepare()), so neither the old textures nor the descriptor set are in use.
+    auto patches = std::make_unique<PatchTextures>(context_, *data_, settings_.patchSettings);
+    vk::writeImageDescriptor(context_, set_, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             patches->image().view, VK_IMAGE_LAYOUT_GENERAL, patches->sampler());
+    patches_ = std::move(patches);
+    fullPatches_ = true;
+    if (lod_) lod_->patchLayout = PatchLayout{};  // chosen for the new textures' settings
+  }
+}
+
 void TerrainPass::release() {
   VkDevice device = context_.device;
   if (waterPipeline_) vkDestroyPipeline(device, waterPipeline_, nullptr);
-  if (drawPipeline_) vkDestroyPipeline(device, drawPipeline_, nullptr);
+  if (wireframePipeline_) vkDestroyPipeline(device, wireframePipeline_, nullptr);
+  if (fillPipeline_) vkDestroyPipeline(device, fillPipeline_, nullptr);
   if (normalsPipeline_) vkDestroyPipeline(device, normalsPipeline_, nullptr);
   if (heightsPipeline_) vkDestroyPipeline(device, heightsPipeline_, nullptr);
   if (noiseDrawLayout_) vkDestroyPipelineLayout(device, noiseDrawLayout_, nullptr);
   if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
   if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
   if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  waterPipeline_ = drawPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
+  waterPipeline_ = wireframePipeline_ = fillPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
   layout_ = noiseDrawLayout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
   setLayout_ = VK_NULL_HANDLE;
@@ -206,64 +238,98 @@ void TerrainPass::release() {
   data_.reset();
 }
 
-const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
+TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFrame& orientation,
+                                        double heightAboveGroundM) {
   const double radius = planet_.radiusM;
-  TerrainFrameInfo info;
-  // A camera that did not move keeps its frame bit for bit (a transport by angle 0 would still
-  // round), so nothing downstream is recomputed.
-  if (previousOrientation_ && previousOrientation_->cameraPlanetFrame == view.camera.position &&
-      previousOrientation_->radiusM == radius)
-    info.orientation = *previousOrientation_;
-  else
-    info.orientation =
-        orientClipmap(view.camera.position, radius, previousOrientation_ ? &*previousOrientation_ : nullptr);
-  previousOrientation_ = info.orientation;
-  const glm::dvec3 nadir = info.orientation.nadirDirection();
-  const double altitude = info.orientation.altitudeM;
-
+  const ClipmapParams& params = settings_.mesh;
+  Lod lod;
+  lod.orientation = orientation;
   // Cuts: horizon from the height above the radius sphere (with the terrain's maximum as
   // margin), pixel cut from the height above the ground actually below the camera.
-  info.groundHeightM = terrainHeightM(planet_, nadir);
-  const double ground = planet_.hasOcean ? std::max(info.groundHeightM, planet_.seaLevelM) : info.groundHeightM;
-  info.heightAboveGroundM = std::max(altitude - ground, kClipmapMinAltitudeM * 0.01);
-  const ClipmapParams& params = settings_.mesh;
-  const double thetaMax = horizonTheta(radius, altitude, maxTerrainHeightM_);
-  const double thetaMin = minUsefulTheta(radius, std::max(info.heightAboveGroundM, kClipmapMinAltitudeM), view.fovYRad,
+  const double thetaMax = horizonTheta(radius, orientation.altitudeM, maxTerrainHeightM_);
+  const double thetaMin = minUsefulTheta(radius, std::max(heightAboveGroundM, kClipmapMinAltitudeM), view.fovYRad,
                                          view.height * settings_.subPixelRings, params.ringsPerLevel);
-  info.rings = selectRings(params.levels, params.ringsPerLevel, thetaMax, thetaMin);
+  lod.rings = selectRings(params.levels, params.ringsPerLevel, thetaMax, thetaMin);
   const uint32_t rings = mesh_.ringCount();
-  info.heightFirstRing = info.rings.firstRing > 0 ? info.rings.firstRing - 1 : 0;
-  info.heightLastRing = std::min(info.rings.lastRing + 1, rings - 1);
-  info.metresPerVertexAtNadir =
-      metresPerVertexAtNadir(radius, params.levels, params.ringsPerLevel, params.numPhi, info.rings.lastRing);
-  info.poleCapRadiusM = poleCapRadiusM(radius, params.levels, params.ringsPerLevel, info.rings.lastRing);
-  info.triangles = uint64_t(info.rings.lastRing - info.rings.firstRing) * 2 * params.numPhi + params.numPhi;
-  info.nearPlaneM = std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4);
+  lod.heightFirstRing = lod.rings.firstRing > 0 ? lod.rings.firstRing - 1 : 0;
+  lod.heightLastRing = std::min(lod.rings.lastRing + 1, rings - 1);
+  lod.metresPerVertexAtNadir =
+      metresPerVertexAtNadir(radius, params.levels, params.ringsPerLevel, params.numPhi, lod.rings.lastRing);
+  lod.poleCapRadiusM = poleCapRadiusM(radius, params.levels, params.ringsPerLevel, lod.rings.lastRing);
+  lod.triangles = uint64_t(lod.rings.lastRing - lod.rings.firstRing) * 2 * params.numPhi + params.numPhi;
+  // Patch layout (when sampled) from the ground footprint of a pixel at the nadir.
+  lod.nadirPixelM = radius * pixelFootprintTheta(radius, std::max(heightAboveGroundM, 0.01), view.fovYRad, view.height);
 
   // Octave tables around the anchor, the sea-sphere point below the camera.
-  tables_ = buildOctaveTables(planet_, radius * nadir);
+  tables_ = buildOctaveTables(planet_, radius * orientation.nadirDirection());
   vk::uploadBuffer(context_, remainders_, tables_.remainders.data(), tables_.remainders.size() * sizeof(glm::vec4));
   vk::uploadBuffer(context_, shifts_, tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
+  return lod;
+}
 
-  // Patch layout from the ground footprint of a pixel at the nadir.
-  const double nadirPixelM =
-      radius * pixelFootprintTheta(radius, std::max(info.heightAboveGroundM, 0.01), view.fovYRad, view.height);
-  if (settings_.patches) info.patchLayout = choosePatchLayout(patches_->settings(), radius, nadir, nadirPixelM);
+const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
+  const double radius = planet_.radiusM;
+  buildForToggles();
+  TerrainFrameInfo info;
+  // This camera's orientation, transported from the previous frame's (also while the LOD is
+  // frozen, so that unfreezing continues from it). A camera that did not move keeps its frame
+  // bit for bit (a transport by angle 0 would still round), so nothing downstream is recomputed.
+  if (previousOrientation_ && previousOrientation_->cameraPlanetFrame == view.camera.position &&
+      previousOrientation_->radiusM == radius)
+    info.viewOrientation = *previousOrientation_;
+  else
+    info.viewOrientation =
+        orientClipmap(view.camera.position, radius, previousOrientation_ ? &*previousOrientation_ : nullptr);
+  previousOrientation_ = info.viewOrientation;
 
-  // View: the local frame with the camera at its origin.
-  const glm::dmat3 planetToLocal = glm::transpose(info.orientation.localToPlanet);
-  const glm::dmat4 viewM = viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
+  // The ground below the camera (for the pixel cut and the near plane).
+  info.groundHeightM = terrainHeightM(planet_, info.viewOrientation.nadirDirection());
+  const double ground = planet_.hasOcean ? std::max(info.groundHeightM, planet_.seaLevelM) : info.groundHeightM;
+  info.heightAboveGroundM = std::max(info.viewOrientation.altitudeM - ground, kClipmapMinAltitudeM * 0.01);
+  info.nearPlaneM = std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4);
+
+  info.lodFrozen = freezeLod_ && lod_;
+  if (!info.lodFrozen) lod_ = chooseLod(view, info.viewOrientation, info.heightAboveGroundM);
+  Lod& lod = *lod_;
+  const bool patches = settings_.patches && !settings_.wireframe;
+  if (patches && lod.patchLayout.levels.empty())
+    lod.patchLayout =
+        choosePatchLayout(patches_->settings(), radius, lod.orientation.nadirDirection(), lod.nadirPixelM);
+  info.orientation = lod.orientation;
+  info.rings = lod.rings;
+  info.heightFirstRing = lod.heightFirstRing;
+  info.heightLastRing = lod.heightLastRing;
+  info.metresPerVertexAtNadir = lod.metresPerVertexAtNadir;
+  info.poleCapRadiusM = lod.poleCapRadiusM;
+  info.triangles = lod.triangles;
+  if (patches) info.patchLayout = lod.patchLayout;
+  info.wireframe = settings_.wireframe;
+  info.waterDrawn = waterPipeline_ && settings_.water && !settings_.wireframe;
+
+  // View: the mesh's local frame with the camera at its origin. The mesh's positions are offsets
+  // from its anchor (radius · its nadir), and the camera it was chosen for sits at (0, 0,
+  // altitude) from it. A frozen mesh's camera has moved since by `moved` (local frame): the
+  // shaders take its z part with the altitude, the view matrix the rest.
+  const glm::dmat3 planetToLocal = glm::transpose(lod.orientation.localToPlanet);
+  glm::dmat4 viewM = viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
+  double cameraZ = lod.orientation.altitudeM;
+  if (info.lodFrozen) {
+    const glm::dvec3 moved = planetToLocal * (view.camera.position - lod.orientation.cameraPlanetFrame);
+    viewM = viewM * glm::translate(glm::dmat4(1.0), -glm::dvec3(moved.x, moved.y, 0.0));
+    cameraZ += moved.z;
+  }
   const glm::dmat4 projection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
   frame_ = info;
-  writeUniforms(view, projection * viewM);
+  writeUniforms(view, projection * viewM, cameraZ);
 
+  // What the heights depend on: unchanged while frozen (unless a toggle changes the patch layout).
   pending_ = ComputeKey{};
-  pending_.camera = view.camera.position;
-  pending_.orientation = info.orientation.localToPlanet;
-  pending_.firstRing = info.rings.firstRing;
-  pending_.lastRing = info.rings.lastRing;
-  if (settings_.patches && !info.patchLayout.levels.empty()) {
+  pending_.camera = lod.orientation.cameraPlanetFrame;
+  pending_.orientation = lod.orientation.localToPlanet;
+  pending_.firstRing = lod.rings.firstRing;
+  pending_.lastRing = lod.rings.lastRing;
+  if (patches) {
     pending_.face = info.patchLayout.face;
     pending_.exponent = info.patchLayout.levels[0].exponent;
     pending_.originA = info.patchLayout.levels[0].originA;
@@ -272,23 +338,23 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
   return frame_;
 }
 
-void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection) {
+void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection, double cameraZ) {
   const ClipmapFrame& o = frame_.orientation;
   gpu::FrameUniforms& u = uniformData_;
   u = gpu::FrameUniforms{};
   u.viewProjection = glm::mat4(viewProjection);
   u.localToPlanet = glm::mat4(glm::mat3(o.localToPlanet));
   u.planetToLocal = glm::mat4(glm::mat3(glm::transpose(o.localToPlanet)));
-  u.camera = glm::vec4(float(o.altitudeM), float(planet_.radiusM), float(view.timeS), float(planet_.water.waveSlope));
+  u.camera = glm::vec4(float(cameraZ), float(planet_.radiusM), float(view.timeS), float(planet_.water.waveSlope));
   const PlanetColors& c = planet_.colors;
   u.planet =
       glm::vec4(float(planet_.seaLevelM), planet_.hasOcean ? 1.0f : 0.0f, float(c.beachHeightM), float(c.snowLineM));
   u.shading = glm::vec4(float(std::sin(c.iceCapLatitudeDeg * std::numbers::pi / 180.0)), float(int(c.scheme)),
-                        settings_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
+                        frame_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
   const glm::dvec3 sunLocal = glm::transpose(o.localToPlanet) * view.sunDirection;
   u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(gpu::kSunIrradiance * settings_.sunIntensity));
-  u.water = glm::vec4(float(planet_.water.clarityM), float(planet_.water.waveWavelengthM), waterPipeline_ ? 1.0f : 0.0f,
-                      0.0f);
+  u.water = glm::vec4(float(planet_.water.clarityM), float(planet_.water.waveWavelengthM),
+                      frame_.waterDrawn ? 1.0f : 0.0f, 0.0f);
   u.atmosphere = sky_.atmosphere();
   for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)];
   u.colorDeepWater = toVec4(c.deepWater);
@@ -424,7 +490,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     computed_ = pending_;
   }
   frame_.patchLevelsRebuilt = 0;
-  if (settings_.patches) {
+  if (!frame_.patchLayout.levels.empty()) {
     if (timer) timer->begin(cmd, "patches");
     frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout);
     if (timer) timer->end(cmd);
@@ -433,7 +499,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frame_.wireframe ? wireframePipeline_ : fillPipeline_);
   const VkPipelineLayout drawLayout = noiseDrawLayout_ ? noiseDrawLayout_ : layout_;
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &set_, 0, nullptr);
   if (noiseDrawLayout_) {
@@ -448,7 +514,7 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const uint32_t fanFirst = mesh_.indexCount() + 3 * n * frame_.rings.lastRing;
   vkCmdDrawIndexed(cmd, 3 * n, 1, fanFirst, 0, 0);
   if (timer) timer->end(cmd);
-  if (waterPipeline_) {
+  if (frame_.waterDrawn) {
     if (timer) timer->begin(cmd, "water");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, waterPipeline_);
     if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);

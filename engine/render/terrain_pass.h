@@ -52,7 +52,7 @@ struct TerrainSettings {
   bool limitOctaves = true;  // octave budgets per ring (off: every octave everywhere, for comparisons)
   bool patches = true;       // per-pixel detail from the patch textures
   PatchSettings patchSettings;
-  bool wireframe = false;           // debug: triangle edges only
+  bool wireframe = false;           // debug: triangle edges only (no patch textures, no water)
   double bandWavelengthM = 6000.0;  // scale of the noise that frays colour-band edges
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
   double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
@@ -64,7 +64,8 @@ struct TerrainSettings {
 
 // What the CPU decided for a frame.
 struct TerrainFrameInfo {
-  ClipmapFrame orientation;
+  ClipmapFrame orientation;      // of the mesh (while the LOD is frozen: the frozen frame's)
+  ClipmapFrame viewOrientation;  // of this camera (= orientation unless frozen): for passes around the camera (sky)
   RingRange rings;
   uint32_t heightFirstRing = 0;  // rings whose heights are computed (one beyond the drawn ones)
   uint32_t heightLastRing = 0;
@@ -78,7 +79,10 @@ struct TerrainFrameInfo {
   double cpuHeightsMs = 0.0;       // HeightSource::Cpu: wall time of the CPU evaluation this frame
   uint32_t patchLevelsRebuilt = 0;
   bool heightsComputed = false;
-  PatchLayout patchLayout;
+  bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
+  bool wireframe = false;   // drawn as triangle edges
+  bool waterDrawn = false;  // the water sphere is drawn
+  PatchLayout patchLayout;  // empty when the patch textures are not sampled
 };
 
 // The ground spacing of ring `ring`'s vertices on a sphere of radiusM: the larger of the radial
@@ -107,7 +111,9 @@ class TerrainPass {
   TerrainPass& operator=(const TerrainPass&) = delete;
 
   // CPU half of a frame: orientation (transported from the previous frame), ring cut, octave
-  // tables, patch layout, uniforms. Returns what it decided.
+  // tables, patch layout, uniforms. Returns what it decided. It rewrites buffers the previous
+  // frame's commands read, and builds on first use what the toggles below need: call it only
+  // after that frame completed.
   const TerrainFrameInfo& prepare(const TerrainView& view);
   // Compute half: heights and normals (skipped when nothing that feeds them changed since the
   // last computed frame), then the patch levels that moved. Call after prepare().
@@ -115,6 +121,26 @@ class TerrainPass {
   // The draw, inside a dynamic-rendering scope with the target's formats: the ground, then the
   // water sphere over it (planets with an ocean).
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
+
+  // Debug (the viewer): while frozen, prepare() keeps the orientation, rings, octave tables and
+  // patch layout of the last frame prepared before freezing, and that mesh is drawn from wherever
+  // the camera now is (fly away and look at the LOD from outside; frame().viewOrientation is the
+  // camera's own). Unfreezing lets the LOD follow the camera again.
+  void setFreezeLod(bool freeze) { freezeLod_ = freeze; }
+  bool freezeLod() const { return freezeLod_; }
+
+  // Live toggles of the TerrainSettings fields of the same names; each takes effect at the
+  // next prepare(), which builds what it needs on first use (no new pass).
+  // Triangle edges only: the patch textures are neither sampled nor rebuilt, no water.
+  void setWireframe(bool wireframe) { settings_.wireframe = wireframe; }
+  // The water sphere over the ground; only planets with an ocean have one.
+  void setWaterEnabled(bool water) { settings_.water = water; }
+  // Scale of the sun's irradiance (gpu::kSunIrradiance).
+  void setSunIntensity(double scale) { settings_.sunIntensity = scale; }
+  // Fill light, as a fraction of the sun's irradiance (airless bodies).
+  void setAmbient(double fraction) { settings_.ambient = fraction; }
+  // As constructed, with the toggles' current values.
+  const TerrainSettings& settings() const { return settings_; }
 
   const ClipmapMesh& mesh() const { return mesh_; }
   const TerrainFrameInfo& frame() const { return frame_; }
@@ -127,8 +153,31 @@ class TerrainPass {
   double maxTerrainHeightM() const { return maxTerrainHeightM_; }
 
  private:
+  // The level of detail of a frame: everything the heights depend on besides the planet. Kept
+  // (with tables_) while the LOD is frozen.
+  struct Lod {
+    ClipmapFrame orientation;
+    RingRange rings;
+    uint32_t heightFirstRing = 0;
+    uint32_t heightLastRing = 0;
+    double metresPerVertexAtNadir = 0.0;
+    double poleCapRadiusM = 0.0;
+    uint64_t triangles = 0;
+    double nadirPixelM = 0.0;  // ground size of a pixel at the nadir, which the patch layout follows
+    PatchLayout patchLayout;   // chosen when the patch textures are first sampled for this LOD
+  };
+
   void release();
-  void writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection);
+  // Creates what the current toggles need and does not exist yet: the draw pipeline of the
+  // polygon mode, the full-size patch textures (the pass may have started without them).
+  void buildForToggles();
+  VkPipeline createDrawPipeline(bool wireframe);
+  // The rings, tables (uploaded) and budget figures for `orientation`, with the camera
+  // heightAboveGroundM above the ground.
+  Lod chooseLod(const TerrainView& view, const ClipmapFrame& orientation, double heightAboveGroundM);
+  // cameraZ: the camera's height above the anchor along local z (its x and y are 0, or in the
+  // view-projection while the LOD is frozen).
+  void writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection, double cameraZ);
   gpu::TerrainComputePush heightPush() const;
   // HeightSource::Cpu: evaluates this frame's vertices on the CPU into the staging buffer and
   // records its copy into surface_ and attributes_.
@@ -137,9 +186,12 @@ class TerrainPass {
   vk::Context& context_;
   PlanetDescription planet_;
   TerrainSettings settings_;
+  VkFormat colorFormat_ = VK_FORMAT_UNDEFINED;
+  VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
   ClipmapMesh mesh_;
   std::unique_ptr<PlanetGpuData> data_;
   std::unique_ptr<PatchTextures> patches_;
+  bool fullPatches_ = false;  // patches_ has settings_.patchSettings (else a minimal stand-in that is never sampled)
   double maxTerrainHeightM_ = 0.0;
 
   vk::Buffer meshVertices_;
@@ -160,13 +212,17 @@ class TerrainPass {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline heightsPipeline_ = VK_NULL_HANDLE;
   VkPipeline normalsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline drawPipeline_ = VK_NULL_HANDLE;
-  VkPipeline waterPipeline_ = VK_NULL_HANDLE;
+  // The draw, filled and as edges: the constructed mode's at once, the other on first use.
+  VkPipeline fillPipeline_ = VK_NULL_HANDLE;
+  VkPipeline wireframePipeline_ = VK_NULL_HANDLE;
+  VkPipeline waterPipeline_ = VK_NULL_HANDLE;  // planets with an ocean, except HeightSource::VertexShader
   const SkyTables& sky_;
   VkPipelineLayout noiseDrawLayout_ = VK_NULL_HANDLE;  // HeightSource::VertexShader: push constants in the vertex stage
 
   TerrainFrameInfo frame_;
-  OctaveTables tables_;
+  bool freezeLod_ = false;
+  std::optional<Lod> lod_;  // the last prepared frame's
+  OctaveTables tables_;     // lod_'s
   std::optional<ClipmapFrame> previousOrientation_;
   gpu::FrameUniforms uniformData_{};
   // What the last computed heights were computed for: skip the compute when it is unchanged.

@@ -1,6 +1,6 @@
 // World-anchored patch textures (engine/render/patch_textures.h): the per-level parameters the
-// CPU prepares in double, and the bindings and specialization constants of patch_height.comp
-// and patch_normal.comp.
+// CPU prepares in double, and the bindings of patch_height.comp and patch_normal.comp (the
+// height pass's specialization constants are those of shared/terrain_params.h).
 //
 // Texels are grouped into square tiles fixed on the cube face (tile k along a covers the texels
 // whose index on the face, originA + x, lies in [k·T, (k+1)·T)). Each tile has its own anchor,
@@ -30,14 +30,6 @@ GPU_CONST uint kPatchWorkgroupSize = 8u;  // 8 × 8 invocations per workgroup, b
 // of at most ~45 texels from an anchor at the default 512, and every height-pass workgroup lies
 // in one tile.
 GPU_CONST uint kPatchTileDivisor = 8u;
-
-// Specialization constants of patch_height.comp: the planet's layer count and each layer's
-// noise type and hash, so that the shader compiler removes the branches on them (lavapipe runs
-// both sides of even a uniform branch; README.md, "Specialization, not branches").
-GPU_CONST uint kPatchSpecLayerCount = 0u;
-GPU_CONST uint kPatchSpecTypes = 1u;                       // + layer index
-GPU_CONST uint kPatchSpecHashes = 1u + kTerrainMaxLayers;  // + layer index
-GPU_CONST uint kPatchSpecCount = 1u + 2u * kTerrainMaxLayers;
 
 // The octave budget of one noise layer (octave_budget.h), computed on the CPU per level.
 struct PatchLayerBudget {

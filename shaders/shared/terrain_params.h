@@ -19,6 +19,15 @@ GPU_CONST uint kTerrainBindingShifts = 4u;       // uvec4[kTerrainMaxLayers * kN
 GPU_CONST uint kTerrainBindingPermutations = 5u; // uint[kTerrainMaxLayers * kNoisePermutationSize]
 GPU_CONST uint kTerrainWorkgroupSize = 64u;
 
+// Specialization constants of the shaders that sum the planet's layers (patch_height.comp,
+// terrain_heights.comp; declared in shaders/terrain_layer_specialization.glsl): the layer count
+// and each layer's noise type and hash, so that the shader compiler removes the branches on them
+// (lavapipe runs both sides of even a uniform branch; README.md, "Specialization, not branches").
+GPU_CONST uint kTerrainSpecLayerCount = 0u;
+GPU_CONST uint kTerrainSpecTypes = 1u;                       // + layer index
+GPU_CONST uint kTerrainSpecHashes = 1u + kTerrainMaxLayers;  // + layer index
+GPU_CONST uint kTerrainSpecCount = 1u + 2u * kTerrainMaxLayers;
+
 struct TerrainLayer {
   NoiseParams noise;
   float amplitudeM;  // metres per unit of noise
