@@ -47,13 +47,7 @@ Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const 
       stars.brightness = float(planet.stars.brightness);
       stars_ = std::make_unique<Starfield>(context, stars, kHdrFormat, kDepthFormat);
     }
-    const VkExtent2D extent{settings.width, settings.height};
-    hdr_ = vk::createImage2D(context, extent, kHdrFormat,
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
-    color_ = vk::createImage2D(context, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-    depth_ = vk::createImage2D(context, extent, kDepthFormat,
-                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    sky_->setTargets(hdr_, depth_);
+    createTargets();
     if (context.timestampValidBits) {
       timer_.create(context, 16);
       timerCreated_ = true;
@@ -69,13 +63,46 @@ Renderer::~Renderer() { release(); }
 void Renderer::release() {
   if (timerCreated_) timer_.destroy(context_);
   timerCreated_ = false;
-  vk::destroyImage(context_, depth_);
-  vk::destroyImage(context_, color_);
-  vk::destroyImage(context_, hdr_);
+  destroyTargets();
   stars_.reset();
   sky_.reset();
   terrain_.reset();
   skyTables_.reset();
+}
+
+void Renderer::createTargets() {
+  const VkExtent2D extent{settings_.width, settings_.height};
+  hdr_ = vk::createImage2D(context_, extent, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
+  color_ = vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+  depth_ = vk::createImage2D(context_, extent, kDepthFormat,
+                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+  sky_->setTargets(hdr_, depth_);
+}
+
+void Renderer::destroyTargets() {
+  vk::destroyImage(context_, depth_);
+  vk::destroyImage(context_, color_);
+  vk::destroyImage(context_, hdr_);
+}
+
+void Renderer::resize(uint32_t width, uint32_t height) {
+  RenderSettings next = settings_;
+  next.width = width;
+  next.height = height;
+  validateRenderSettings(next);
+  if (width == settings_.width && height == settings_.height) return;
+  destroyTargets();
+  settings_ = next;
+  createTargets();
+}
+
+void Renderer::setSkySettings(const SkySettings& sky) {
+  settings_.sky = sky;
+  sky_->setSettings(sky);
+}
+
+std::vector<vk::GpuTiming> Renderer::lastTimings() const {
+  return timerCreated_ ? timer_.results(context_) : std::vector<vk::GpuTiming>{};
 }
 
 CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const {
@@ -116,80 +143,92 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 }  // namespace
 
-RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
-  RenderResult result;
-  result.camera = clampToGround(requested, &result.cameraRaised);
+Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS) {
+  Prepared prepared;
+  prepared.camera = clampToGround(requested, &prepared.cameraRaised);
   TerrainView view;
-  view.camera = cameraBasis(result.camera, planet_.radiusM);
+  view.camera = cameraBasis(prepared.camera, planet_.radiusM);
   view.fovYRad = settings_.fovYDeg * std::numbers::pi / 180.0;
   view.width = settings_.width;
   view.height = settings_.height;
-  view.sunDirection = sunDirection(sun, result.camera);
+  view.sunDirection = sunPlanet;
   view.timeS = timeS;
   const TerrainFrameInfo& frame = terrain_->prepare(view);
 
-  const glm::dmat3 planetToLocal = glm::transpose(frame.orientation.localToPlanet);
+  // The sky is drawn around the camera: its frame, also while the terrain's LOD is frozen.
+  const glm::dmat3 planetToLocal = glm::transpose(frame.viewOrientation.localToPlanet);
   SkyView skyView;
   skyView.viewProjection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), frame.nearPlaneM) *
       viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
-  skyView.localToPlanet = frame.orientation.localToPlanet;
+  skyView.localToPlanet = frame.viewOrientation.localToPlanet;
   skyView.forward = planetToLocal * view.camera.forward;
   skyView.sunLocal = planetToLocal * view.sunDirection;
   skyView.cameraPlanet = view.camera.position;
-  skyView.altitudeM = frame.orientation.altitudeM;
+  skyView.altitudeM = frame.viewOrientation.altitudeM;
   skyView.nearPlaneM = frame.nearPlaneM;
   skyView.timeS = timeS;
   skyView.pixelAngleRad = view.fovYRad / double(view.height);
   sky_->prepare(skyView, settings_.width, settings_.height);
   // Stars are fixed in the planet frame: planet direction → local → clip.
-  const glm::mat4 starsToClip = glm::mat4(skyView.viewProjection * glm::dmat4(planetToLocal));
+  starsToClip_ = glm::mat4(skyView.viewProjection * glm::dmat4(planetToLocal));
+  prepared.terrain = frame;
+  return prepared;
+}
 
+void Renderer::record(VkCommandBuffer cmd) {
   const VkExtent2D extent{settings_.width, settings_.height};
   vk::GpuTimer* timer = timerCreated_ ? &timer_ : nullptr;
-  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
-    if (timer) timer->reset(cmd);
-    skyTables_->recordBuild(cmd, timer);
-    if (stars_) stars_->recordGenerate(cmd, timer);
-    terrain_->recordCompute(cmd, timer);
-    // Earlier contents are discarded: the frame clears the HDR target and the depth.
-    hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    depth_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    color_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
-                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
-                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    const VkRenderingAttachmentInfo depthAttachment =
-        clearedAttachment(depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-    beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
-    // Stars first, at infinity; everything drawn later covers them.
-    if (stars_) stars_->recordDraw(cmd, starsToClip, float(settings_.height), timer);
-    terrain_->recordDraw(cmd, timer);
-    vkCmdEndRendering(cmd);
-    // The compose pass reads and writes the HDR colour and samples the depth.
-    vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                        VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    sky_->recordCompose(cmd, timer);
-    // The tonemap's fragments read what the compose pass wrote.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    vk::transitionImage(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
-                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    const VkRenderingAttachmentInfo colorAttachment =
-        clearedAttachment(color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    beginRendering(cmd, extent, &colorAttachment, nullptr);
-    sky_->recordTonemap(cmd, timer);
-    vkCmdEndRendering(cmd);
-  });
-  if (timer) result.timings = timer->results(context_);
+  if (timer) timer->reset(cmd);
+  skyTables_->recordBuild(cmd, timer);
+  if (stars_) stars_->recordGenerate(cmd, timer);
+  terrain_->recordCompute(cmd, timer);
+  // Earlier contents are discarded: the frame clears the HDR target and the depth. The source
+  // scope covers every earlier command on the queue (a previous frame still reading them).
+  hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  depth_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  color_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
+  // Stars first, at infinity; everything drawn later covers them.
+  if (stars_) stars_->recordDraw(cmd, starsToClip_, float(settings_.height), timer);
+  terrain_->recordDraw(cmd, timer);
+  vkCmdEndRendering(cmd);
+  // The compose pass reads and writes the HDR colour and samples the depth.
+  vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  sky_->recordCompose(cmd, timer);
+  // The tonemap's fragments read what the compose pass wrote.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  vk::transitionImage(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  const VkRenderingAttachmentInfo colorAttachment = clearedAttachment(color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  beginRendering(cmd, extent, &colorAttachment, nullptr);
+  sky_->recordTonemap(cmd, timer);
+  vkCmdEndRendering(cmd);
+}
+
+RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
+  RenderResult result;
+  // The sun is placed from the camera's ground point as rendered (after the eye-height rule).
+  const CameraPose camera = clampToGround(requested);
+  const Prepared prepared = prepare(requested, sunDirection(sun, camera), timeS);
+  result.camera = prepared.camera;
+  result.cameraRaised = prepared.cameraRaised;
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd); });
+  result.timings = lastTimings();
   result.terrain = terrain_->frame();
   std::vector<uint8_t> pixels = vk::readbackImage(context_, color_);
   result.image.width = settings_.width;

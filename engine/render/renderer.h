@@ -64,6 +64,29 @@ class Renderer {
   // `timeS` is the animation phase (clouds, waves); `readHdr` also returns the HDR frame.
   RenderResult render(const CameraPose& camera, const SunPose& sun, double timeS = 0.0, bool readHdr = false);
 
+  // The two halves of render(), for a caller that records into its own command buffer (the
+  // viewer). prepare(): the CPU half (eye-height rule, clipmap orientation, cuts, uniforms);
+  // `sunPlanet` is the unit direction toward the sun in the planet frame. It writes host-visible
+  // buffers that the previous frame's commands read: call it only after that frame completed.
+  // record(): every pass into `cmd`, ending with output() in COLOR_ATTACHMENT_OPTIMAL.
+  struct Prepared {
+    CameraPose camera;  // as rendered
+    bool cameraRaised = false;
+    TerrainFrameInfo terrain;
+  };
+  Prepared prepare(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS);
+  void record(VkCommandBuffer cmd);
+  // The tonemapped sRGB frame (RGBA8) that record() leaves, and the GPU times of the last
+  // recorded frame's passes (read after its fence signalled; empty without timestamps).
+  vk::Image& output() { return color_; }
+  std::vector<vk::GpuTiming> lastTimings() const;
+  // New target size (the window was resized); the passes keep everything else. Call only
+  // when no submitted frame still uses the targets.
+  void resize(uint32_t width, uint32_t height);
+  // Exposure, clouds and sky samples change without rebuilding (the compose pass reads them
+  // per frame).
+  void setSkySettings(const SkySettings& sky);
+
   // The camera after the eye-height rule: an altitude below the ground (or the water) plus
   // kMinEyeHeightM is raised to it.
   CameraPose clampToGround(const CameraPose& camera, bool* raised = nullptr) const;
@@ -73,6 +96,8 @@ class Renderer {
 
  private:
   void release();
+  void createTargets();
+  void destroyTargets();
   std::vector<glm::vec4> readHdrImage();
 
   vk::Context& context_;
@@ -85,6 +110,7 @@ class Renderer {
   vk::Image hdr_;
   vk::Image color_;
   vk::Image depth_;
+  glm::mat4 starsToClip_{1.0f};
   vk::GpuTimer timer_;
   bool timerCreated_ = false;
 };
