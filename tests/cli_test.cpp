@@ -59,10 +59,16 @@ bool noDevice(const CommandResult& run) { return run.err.find("no Vulkan") != st
 TEST(Cli, HelpListsTheSubcommands) {
   CommandResult run = planet("--help");
   EXPECT_EQ(run.exitCode, 0);
-  for (const char* cmd : {"noise", "validate", "bench"}) EXPECT_NE(run.out.find(cmd), std::string::npos) << cmd;
+  for (const char* cmd : {"noise", "validate", "bench", "height", "render", "view"})
+    EXPECT_NE(run.out.find(cmd), std::string::npos) << cmd;
   CommandResult sub = planet("noise --help");
   EXPECT_EQ(sub.exitCode, 0);
   EXPECT_NE(sub.out.find("--lacunarity"), std::string::npos);
+  // The viewer's help names its scripting flags and the keys.
+  CommandResult view = planet("view --help");
+  EXPECT_EQ(view.exitCode, 0);
+  for (const char* text : {"--frames", "--screenshot", "--path", "--quality", "--vsync", "F1", "F12", "Tab"})
+    EXPECT_NE(view.out.find(text), std::string::npos) << text << "\n" << view.out;
 }
 
 TEST(Cli, NoisePrintsOneValuePerPointWithNineDigits) {
@@ -120,6 +126,17 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"render --fov 0", "", "--fov must be in (0, 179] degrees, got 0"},
       {"render --preset nosuch", "", "unknown planet preset 'nosuch'"},
       {"render --seed 99999999999", "", "--seed must be in 0..4294967295"},
+      {"view --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"view --size 100000x100000", "", "--size 100000x100000 is outside"},
+      {"view --vsync maybe", "", "--vsync must be 'on' or 'off', got 'maybe'"},
+      {"view --quality best", "", "unknown quality 'best'"},
+      {"view --frames -1", "", "--frames"},
+      {"view --frames 1e12", "", "--frames"},
+      {"view --fov nan", "", "--fov"},
+      {"view --camera 1,2,nan", "", "'nan' is not a finite number"},
+      {"view --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"view --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
+      {"view --screenshot /tmp/", "", "--screenshot must name a file, got '/tmp/'"},
       {"frobnicate", "", "frobnicate"},
       {"", "", "a command is required"},
       {"bench", "", "a command is required"},

@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 # Compiler and build; Vulkan loader, lavapipe (Vulkan on the CPU) and the validation layers;
 # glslang for GLSL -> SPIR-V at build time; libraries; GoogleTest; libnoise (the peer noise
 # library `planet bench noise` compares against); stb (PNG files for renders and golden images);
-# matplotlib (the frame-time plot of `planet bench --plot`, drawn by python3).
+# matplotlib (the frame-time plot of `planet bench --plot`, drawn by python3); GLFW and Dear
+# ImGui for the viewer (`planet view`), and Xvfb, the virtual display its test runs under.
 packages=(
   build-essential cmake ninja-build
   libvulkan-dev mesa-vulkan-drivers
@@ -20,6 +21,8 @@ packages=(
   libnoise-dev
   libstb-dev
   python3-matplotlib
+  libglfw3-dev libimgui-dev
+  xvfb xauth
 )
 
 missing=()

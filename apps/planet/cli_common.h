@@ -63,5 +63,6 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
                                                                      int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
 }  // namespace planet::cli

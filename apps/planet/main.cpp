@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   cli::addBenchCommand(app, global, exitCode);
   cli::addHeightCommand(app, global, exitCode);
   cli::addRenderCommand(app, global, exitCode);
+  cli::addViewCommand(app, global, exitCode);
 
   try {
     app.parse(argc, argv);

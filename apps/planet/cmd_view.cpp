@@ -1,0 +1,90 @@
+// planet view: the real-time viewer in a window (issue 5). The options are checked here, before
+// any window opens; the viewer itself lives in view/viewer.cpp.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "core/error.h"
+#include "render/camera_path.h"
+#include "view/viewer.h"
+#include "view/viewer_ui.h"
+
+namespace planet::cli {
+namespace {
+
+struct ViewCommand {
+  std::string preset{kDefaultPresetName};
+  std::string camera;
+  std::string sun;
+  std::string size = "1280x720";
+  std::string vsync = "on";
+  std::string quality;
+  double fovDeg = 60.0;
+  uint32_t frames = 0;
+  std::string screenshot;
+  std::string path;
+  bool hideUi = false;
+};
+
+constexpr uint32_t kMaxFrames = 100'000'000;
+
+int runView(const GlobalOptions& global, const ViewCommand& cmd) {
+  view::ViewOptions options;
+  parseSize(cmd.size, options.width, options.height);
+  if (cmd.vsync != "on" && cmd.vsync != "off")
+    throw UsageError(fmt::format("--vsync must be 'on' or 'off', got '{}'", cmd.vsync));
+  options.vsync = cmd.vsync == "on";
+  if (!(cmd.fovDeg > 0.0 && cmd.fovDeg <= 179.0))
+    throw UsageError(fmt::format("--fov must be in (0, 179] degrees, got {}", cmd.fovDeg));
+  options.fovDeg = cmd.fovDeg;
+  if (cmd.frames > kMaxFrames)
+    throw UsageError(fmt::format("--frames must be at most {}, got {}", kMaxFrames, cmd.frames));
+  options.frames = cmd.frames;
+  if (!cmd.screenshot.empty() && cmd.screenshot.back() == '/')
+    throw UsageError(fmt::format("--screenshot must name a file, got '{}'", cmd.screenshot));
+  options.screenshot = cmd.screenshot;
+  options.hideUi = cmd.hideUi;
+  options.device = global.device;
+  options.validation = global.validation;
+  try {
+    options.preset = cmd.preset;
+    (void)resolvePreset(cmd.preset);  // a bad preset is reported before a window opens
+    if (!cmd.camera.empty()) options.camera = parseCameraPose(cmd.camera);
+    if (!cmd.sun.empty()) options.sun = parseSunPose(cmd.sun);
+    if (!cmd.quality.empty()) options.quality = parseViewQuality(cmd.quality);
+    if (!cmd.path.empty()) options.path = loadCameraPath(cmd.path);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  return view::runViewer(options);
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
+  auto cmd = std::make_shared<ViewCommand>();
+  CLI::App* sub = app.add_subcommand("view", "Fly around a planet in a window (real time)");
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
+      ->capture_default_str();
+  sub->add_option("--camera", cmd->camera,
+                  "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]");
+  sub->add_option("--sun", cmd->sun,
+                  "AZIMUTH,ELEVATION in degrees, seen from the start's ground point [default: 135,35]");
+  sub->add_option("--size", cmd->size, "Window size WIDTHxHEIGHT in pixels")->capture_default_str();
+  sub->add_option("--vsync", cmd->vsync, "on: present at the display's rate; off: as fast as possible")
+      ->capture_default_str();
+  sub->add_option("--quality", cmd->quality,
+                  "low, medium, high or ultra [default: low on a CPU Vulkan device, else high]");
+  sub->add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str();
+  sub->add_option("--frames", cmd->frames, "Exit after this many frames (0: when the window closes)")
+      ->capture_default_str();
+  sub->add_option("--screenshot", cmd->screenshot, "Save the last frame (without the panel) to this PNG on exit");
+  sub->add_option("--path", cmd->path,
+                  "Play a camera path file (format: planet bench --print-path); with --frames, spread over them");
+  sub->add_flag("--hide-ui", cmd->hideUi, "Start with the panel hidden (F2 shows it)");
+  sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
+  sub->callback([&global, &exitCode, cmd] { exitCode = runView(global, *cmd); });
+}
+
+}  // namespace planet::cli

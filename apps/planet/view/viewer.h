@@ -1,0 +1,38 @@
+// planet view: the real-time viewer (issue 5). A GLFW window with a Vulkan swapchain; every
+// frame the Renderer's passes (the same ones planet render uses) draw into its offscreen
+// target, which is blitted to the swapchain image, and Dear ImGui draws the panel and HUD on top.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "render/camera.h"
+#include "render/camera_path.h"
+#include "render/view_quality.h"
+
+namespace planet::view {
+
+struct ViewOptions {
+  std::string preset{kDefaultPresetName};
+  std::optional<CameraPose> camera;  // default: over the Atlantic from 20,000 km
+  SunPose sun;                       // seen from the starting camera's ground point
+  uint32_t width = 1280, height = 720;
+  bool vsync = true;
+  double fovDeg = 60.0;
+  std::optional<ViewQuality> quality;  // default: by device (defaultViewQuality)
+  uint32_t frames = 0;                 // exit after this many frames (0: when the window closes)
+  std::string screenshot;              // save the last frame here (PNG, without the panel)
+  std::optional<CameraPath> path;      // play this camera path (with `frames`: spread over them)
+  bool hideUi = false;                 // start with the panel hidden (F2 shows it)
+  // Vulkan context.
+  std::string device;
+  bool validation = false;
+};
+
+// Opens the window and runs until it closes (or `frames` have been drawn). Throws planet::Error
+// with one line when no window can be opened (no display) or no device can present to it.
+// Returns the process exit code (1 when validation messages were reported).
+int runViewer(const ViewOptions& options);
+
+}  // namespace planet::view

@@ -1,0 +1,248 @@
+#include "view/viewer_ui.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+namespace planet::view {
+namespace {
+
+// ImGui edits floats; the description holds doubles. Returns true when the edit finished
+// (slider released or value typed), so a rebuild happens once per edit, not per drag step.
+bool editDouble(const char* label, double& value, double min, double max, const char* format = "%.3g",
+                ImGuiSliderFlags flags = 0) {
+  float f = float(value);
+  ImGui::SliderFloat(label, &f, float(min), float(max), format, flags | ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemEdited()) value = double(f);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+bool editInt(const char* label, int& value, int min, int max) {
+  ImGui::SliderInt(label, &value, min, max, "%d", ImGuiSliderFlags_AlwaysClamp);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+bool editColor(const char* label, glm::vec3& color) {
+  float c[3] = {color.x, color.y, color.z};
+  ImGui::ColorEdit3(label, c, ImGuiColorEditFlags_Float);
+  if (ImGui::IsItemEdited()) color = glm::vec3(c[0], c[1], c[2]);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+bool editLayer(NoiseLayer& layer) {
+  bool done = false;
+  noise::NoiseSettings& n = layer.noise;
+  static constexpr noise::NoiseType kTypes[] = {noise::NoiseType::Simplex, noise::NoiseType::Fbm,
+                                                noise::NoiseType::Ridged,  noise::NoiseType::Hybrid,
+                                                noise::NoiseType::Hetero,  noise::NoiseType::Cascade};
+  if (ImGui::BeginCombo("type", noise::noiseTypeName(n.type))) {
+    for (noise::NoiseType t : kTypes)
+      if (ImGui::Selectable(noise::noiseTypeName(t), t == n.type) && t != n.type) {
+        n.type = t;
+        n.offset.reset();  // the new type's default
+        done = true;
+      }
+    ImGui::EndCombo();
+  }
+  done |= editInt("octaves", n.octaves, noise::kMinOctaves, noise::kMaxOctaves);
+  done |= editDouble("lacunarity", n.lacunarity, 1.01, 8.0);
+  done |= editDouble("H", n.H, noise::kMinH, noise::kMaxH);
+  double offset = n.offset.value_or(noise::defaultOffset(n.type));
+  if (editDouble("offset", offset, -2.0, 2.0)) done = true;
+  if (offset != n.offset.value_or(noise::defaultOffset(n.type))) n.offset = offset;
+  double gain = n.gain.value_or(noise::kDefaultGain);
+  if (editDouble("gain", gain, 0.0, noise::kMaxGain)) done = true;
+  if (gain != n.gain.value_or(noise::kDefaultGain)) n.gain = gain;
+  int seed = int(std::min<uint32_t>(n.seed, 1u << 30));
+  if (ImGui::InputInt("seed", &seed, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    n.seed = uint32_t(std::max(seed, 0));
+    done = true;
+  }
+  bool reference = n.hash == noise::NoiseHash::Reference;
+  if (ImGui::Checkbox("reference hash (Perlin's table)", &reference)) {
+    n.hash = reference ? noise::NoiseHash::Reference : noise::NoiseHash::Fast;
+    done = true;
+  }
+  done |= editDouble("amplitude (m)", layer.amplitudeM, -10000.0, 10000.0, "%.0f");
+  double wavelength = 1.0 / layer.frequency;
+  if (editDouble("wavelength (m)", wavelength, 1.0, 1e8, "%.4g", ImGuiSliderFlags_Logarithmic)) done = true;
+  layer.frequency = 1.0 / std::max(wavelength, 1.0);
+  return done;
+}
+
+}  // namespace
+
+const char* viewerKeyHelp() {
+  return "Mouse: right button held looks around (free flight) or turns the view (orbit); left drag\n"
+         "  in orbit moves over the ground; wheel zooms (orbit) or changes speed (free flight)\n"
+         "W/S forward/back, A/D left/right, E/Space up, Q/C down; Shift 4x faster, Alt 4x slower\n"
+         "Tab switches orbit / free flight; G flies to the go-to point of the panel\n"
+         "F1 this help, F2 hides the panel, F12 or P saves a screenshot (without the panel), Esc quits";
+}
+
+void ViewerUi::draw(ViewerSettings& settings, const HudData& hud, UiRequests& requests) {
+  drawHud(hud);
+  if (showPanel_) drawPanel(settings, requests);
+  if (showHelp_) drawHelp();
+}
+
+void ViewerUi::drawHud(const HudData& hud) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.55f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+  if (ImGui::Begin("HUD", nullptr, flags)) {
+    ImGui::Text("%s", hud.device.c_str());
+    ImGui::Text("%.1f fps  (%ux%u render)", hud.fps, hud.renderWidth, hud.renderHeight);
+    if (hud.frameTimesMs && !hud.frameTimesMs->empty()) {
+      std::vector<float> times(hud.frameTimesMs->begin(), hud.frameTimesMs->end());
+      const float top = *std::max_element(times.begin(), times.end());
+      ImGui::PlotLines("##frame", times.data(), int(times.size()), 0, fmt::format("frame ms (max {:.1f})", top).c_str(),
+                       0.0f, top * 1.1f, ImVec2(260, 50));
+    }
+    for (const vk::GpuTiming& pass : hud.passes) ImGui::Text("  %-10s %7.2f ms", pass.name.c_str(), pass.milliseconds);
+    ImGui::Separator();
+    ImGui::Text("lat %.4f  lon %.4f", hud.latitudeDeg, hud.longitudeDeg);
+    if (hud.altitudeM >= 1e4)
+      ImGui::Text("altitude %.1f km, %.1f km above ground", hud.altitudeM / 1e3, hud.heightAboveGroundM / 1e3);
+    else
+      ImGui::Text("altitude %.1f m, %.1f m above ground", hud.altitudeM, hud.heightAboveGroundM);
+    ImGui::Text("%.4g m per vertex at the nadir", hud.metresPerVertex);
+    ImGui::Text("%llu triangles", static_cast<unsigned long long>(hud.triangles));
+    ImGui::Text("%s, %.3g m/s%s", hud.mode == FlightMode::Orbit ? "orbit" : "free flight", hud.speedMps,
+                hud.pathPlaying ? ", playing path" : "");
+    if (!hud.status.empty()) ImGui::TextWrapped("%s", hud.status.c_str());
+    ImGui::TextDisabled("F1: keys");
+  }
+  ImGui::End();
+}
+
+void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(viewport->Size.x - 8, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+  ImGui::SetNextWindowSize(ImVec2(340, std::min(viewport->Size.y - 16, 640.0f)), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("planet", nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    return;
+  }
+  ImGui::PushItemWidth(150);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int quality = int(s.quality);
+    const char* names[kViewQualityCount];
+    for (int i = 0; i < kViewQualityCount; ++i) names[i] = viewQualityName(ViewQuality(i));
+    ImGui::SliderInt("quality", &quality, 0, kViewQualityCount - 1, names[quality], ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemDeactivatedAfterEdit() && quality != int(s.quality)) {
+      s.quality = ViewQuality(quality);
+      r.rebuild = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", describeQuality(ViewQuality(quality)).c_str());
+    r.rebuild |= editDouble("field of view", s.fovDeg, 10.0, 120.0, "%.0f deg");
+    r.terrainToggles |= ImGui::Checkbox("water", &s.water);
+    r.skyChanged |= ImGui::Checkbox("clouds", &s.clouds);
+    if (ImGui::Checkbox("atmosphere", &s.planet.atmosphere.enabled)) r.rebuild = true;
+    if (ImGui::Checkbox("stars", &s.planet.stars.enabled)) r.rebuild = true;
+    r.terrainToggles |= ImGui::Checkbox("wireframe", &s.wireframe);
+    ImGui::SameLine();
+    r.terrainToggles |= ImGui::Checkbox("freeze LOD", &s.freezeLod);
+    if (ImGui::Checkbox("patch textures", &s.patches)) r.rebuild = true;
+    if (!qualityPreset(s.quality).patches) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(off at this quality)");
+    }
+    editDouble("exposure", s.exposure, 0.5, 100.0, "%.2f", ImGuiSliderFlags_Logarithmic);
+    r.skyChanged |= ImGui::IsItemEdited();
+  }
+  if (ImGui::CollapsingHeader("Sun and time", ImGuiTreeNodeFlags_DefaultOpen)) {
+    editDouble("sun latitude", s.sunLatitudeDeg, -90.0, 90.0, "%.1f deg");
+    editDouble("sun longitude", s.sunLongitudeDeg, -180.0, 180.0, "%.1f deg");
+    ImGui::Checkbox("sun moves", &s.sunMoves);
+    ImGui::SameLine();
+    ImGui::Checkbox("animate", &s.animate);
+    editDouble("day length", s.dayLengthS, 10.0, 86400.0, "%.0f s", ImGuiSliderFlags_Logarithmic);
+  }
+  if (ImGui::CollapsingHeader("Terrain")) {
+    PlanetDescription& p = s.planet;
+    r.rebuild |= editDouble("height scale", p.heightScale, 0.0, 10.0);
+    r.rebuild |= editDouble("base height (m)", p.baseHeightM, -5000.0, 5000.0, "%.0f");
+    if (p.hasOcean) r.rebuild |= editDouble("sea level (m)", p.seaLevelM, -5000.0, 5000.0, "%.0f");
+    for (size_t i = 0; i < p.layers.size(); ++i) {
+      ImGui::PushID(int(i));
+      if (ImGui::TreeNode("layer", "layer %zu: %s (%s)", i, p.layers[i].name.c_str(),
+                          noise::noiseTypeName(p.layers[i].noise.type))) {
+        r.rebuild |= editLayer(p.layers[i]);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+  }
+  if (ImGui::CollapsingHeader("Colours")) {
+    PlanetColors& c = s.planet.colors;
+    static constexpr ColorScheme kSchemes[] = {ColorScheme::Earth, ColorScheme::Altitude, ColorScheme::Moon,
+                                               ColorScheme::Mars};
+    if (ImGui::BeginCombo("scheme", colorSchemeName(c.scheme))) {
+      for (ColorScheme scheme : kSchemes)
+        if (ImGui::Selectable(colorSchemeName(scheme), scheme == c.scheme) && scheme != c.scheme) {
+          c = defaultColors(scheme);
+          r.rebuild = true;
+        }
+      ImGui::EndCombo();
+    }
+    r.rebuild |= editDouble("beach (m)", c.beachHeightM, 0.0, 1000.0, "%.0f");
+    r.rebuild |= editDouble("snow line (m)", c.snowLineM, -2000.0, 10000.0, "%.0f");
+    r.rebuild |= editDouble("ice caps from", c.iceCapLatitudeDeg, 0.0, 90.0, "%.1f deg");
+    r.rebuild |= editColor("lowland", c.lowland);
+    r.rebuild |= editColor("highland", c.highland);
+    r.rebuild |= editColor("cliff", c.cliff);
+    r.rebuild |= editColor("snow", c.snow);
+    r.rebuild |= editColor("beach", c.beach);
+    r.rebuild |= editColor("shallow water", c.shallowWater);
+    r.rebuild |= editColor("deep water", c.deepWater);
+  }
+  if (ImGui::CollapsingHeader("Atmosphere")) {
+    AtmosphereDescription& a = s.planet.atmosphere;
+    r.rebuild |= editDouble("top (m)", a.heightM, 1e4, 1e6, "%.0f", ImGuiSliderFlags_Logarithmic);
+    double rayleigh = a.rayleighScattering.z * 1e6;
+    if (editDouble("Rayleigh blue (1e-6/m)", rayleigh, 0.0, 200.0, "%.1f")) r.rebuild = true;
+    if (rayleigh != a.rayleighScattering.z * 1e6 && a.rayleighScattering.z > 0.0)
+      a.rayleighScattering *= rayleigh * 1e-6 / a.rayleighScattering.z;
+    r.rebuild |= editDouble("Rayleigh scale height", a.rayleighScaleHeightM, 100.0, 50000.0, "%.0f m");
+    double mie = a.mieScattering.x * 1e6;
+    if (editDouble("Mie (1e-6/m)", mie, 0.0, 500.0, "%.1f")) r.rebuild = true;
+    if (mie != a.mieScattering.x * 1e6) a.mieScattering = glm::dvec3(mie * 1e-6);
+    r.rebuild |= editDouble("Mie scale height", a.mieScaleHeightM, 100.0, 20000.0, "%.0f m");
+    r.rebuild |= editDouble("Mie g", a.mieG, 0.0, 0.95, "%.2f");
+    CloudDescription& cl = s.planet.clouds;
+    r.rebuild |= editDouble("cloud cover", cl.coverage, 0.0, 1.0, "%.2f");
+  }
+  if (ImGui::CollapsingHeader("Go to and presets", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputFloat3("lat, lon, alt m", goTo_, "%.5g");
+    if (ImGui::Button("Go (G)")) {
+      r.goTo = true;
+      r.goToLatDeg = goTo_[0];
+      r.goToLonDeg = goTo_[1];
+      r.goToAltitudeM = goTo_[2];
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("orbit / free (Tab)")) r.toggleMode = true;
+    ImGui::InputText("preset file", presetPath_, sizeof(presetPath_));
+    if (ImGui::Button("Load")) r.loadPreset = presetPath_;
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) r.savePreset = presetPath_;
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot (F12)")) r.screenshot = true;
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void ViewerUi::drawHelp() {
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::Begin("Keys (F1)", &showHelp_, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    ImGui::TextUnformatted(viewerKeyHelp());
+  ImGui::End();
+}
+
+}  // namespace planet::view

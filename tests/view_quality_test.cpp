@@ -1,0 +1,74 @@
+// Viewer quality levels (render/view_quality.h): names, the device default, and the render
+// settings each level gives for a window.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "render/view_quality.h"
+
+namespace planet {
+namespace {
+
+TEST(ViewQuality, NamesRoundTripAndBadNamesAreNamed) {
+  for (int i = 0; i < kViewQualityCount; ++i)
+    EXPECT_EQ(parseViewQuality(viewQualityName(ViewQuality(i))), ViewQuality(i));
+  try {
+    parseViewQuality("best");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'best'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ViewQuality, CpuDevicesStartLowAndGpusHigh) {
+  EXPECT_EQ(defaultViewQuality(true), ViewQuality::Low);
+  EXPECT_EQ(defaultViewQuality(false), ViewQuality::High);
+}
+
+TEST(ViewQuality, HighDrawsWhatPlanetRenderDraws) {
+  const RenderSettings render;
+  const RenderSettings high = viewRenderSettings(render, ViewQuality::High, render.width, render.height);
+  EXPECT_EQ(high.width, render.width);
+  EXPECT_EQ(high.height, render.height);
+  EXPECT_EQ(high.terrain.mesh.levels, render.terrain.mesh.levels);
+  EXPECT_EQ(high.terrain.mesh.ringsPerLevel, render.terrain.mesh.ringsPerLevel);
+  EXPECT_EQ(high.terrain.mesh.numPhi, render.terrain.mesh.numPhi);
+  EXPECT_EQ(high.terrain.subPixelRings, render.terrain.subPixelRings);
+  EXPECT_EQ(high.terrain.patches, render.terrain.patches);
+  EXPECT_EQ(high.terrain.patchSettings.resolution, render.terrain.patchSettings.resolution);
+  EXPECT_EQ(high.sky.viewSamples, render.sky.viewSamples);
+}
+
+TEST(ViewQuality, EachLevelUpCostsMoreAndTheRenderSizeFollowsTheWindow) {
+  const RenderSettings base;
+  double previousWork = 0.0;
+  for (int i = 0; i < kViewQualityCount; ++i) {
+    const RenderSettings s = viewRenderSettings(base, ViewQuality(i), 960, 540);
+    const QualityPreset p = qualityPreset(ViewQuality(i));
+    EXPECT_EQ(s.width, uint32_t(960 * p.renderScale + 0.5)) << viewQualityName(ViewQuality(i));
+    EXPECT_EQ(s.height, uint32_t(540 * p.renderScale + 0.5)) << viewQualityName(ViewQuality(i));
+    EXPECT_NO_THROW(validateRenderSettings(s));
+    // Pixels times atmosphere samples plus mesh vertices: a proxy for a frame's work.
+    const double work = double(s.width) * s.height * s.sky.viewSamples +
+                        double(s.terrain.mesh.levels) * s.terrain.mesh.ringsPerLevel * s.terrain.mesh.numPhi;
+    EXPECT_GT(work, previousWork) << viewQualityName(ViewQuality(i));
+    previousWork = work;
+  }
+  // A tiny window still gets a usable render target.
+  const RenderSettings tiny = viewRenderSettings(base, ViewQuality::Low, 1, 1);
+  EXPECT_EQ(tiny.width, 16u);
+  EXPECT_EQ(tiny.height, 16u);
+}
+
+TEST(ViewQuality, WireframeAndTheUsersPatchToggleTurnPatchesOff) {
+  RenderSettings base;
+  base.terrain.patches = false;
+  EXPECT_FALSE(viewRenderSettings(base, ViewQuality::Ultra, 100, 100).terrain.patches);
+  base.terrain.patches = true;
+  base.terrain.wireframe = true;
+  EXPECT_FALSE(viewRenderSettings(base, ViewQuality::Ultra, 100, 100).terrain.patches);
+  EXPECT_FALSE(viewRenderSettings(RenderSettings{}, ViewQuality::Low, 100, 100).terrain.patches);
+  EXPECT_TRUE(viewRenderSettings(RenderSettings{}, ViewQuality::Medium, 100, 100).terrain.patches);
+}
+
+}  // namespace
+}  // namespace planet

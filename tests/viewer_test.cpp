@@ -1,0 +1,108 @@
+// The real-time viewer (planet view) run as a person would, in a window on a virtual display
+// (Xvfb) on lavapipe, with validation and synchronization validation on: a scripted descent
+// (--path, --frames) must draw the planet, report no validation message and hold its memory
+// flat after the warm-up frames. Skipped where xvfb-run or a Vulkan device is missing.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/image_file.h"
+#include "core/subprocess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir() {
+  static fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("planet_viewer_test_" + std::to_string(getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+bool haveXvfb() { return planet::runProcess({"sh", "-c", "command -v xvfb-run"}, "").exitCode == 0; }
+
+// Runs `planet ARGS...` under xvfb-run on its own virtual screen.
+planet::ProcessResult viewUnderXvfb(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1024x768x24", PLANET_EXE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return planet::runProcess(argv, "");
+}
+
+bool noDevice(const planet::ProcessResult& run) { return run.err.find("no Vulkan") != std::string::npos; }
+
+struct Rgb {
+  double r = 0, g = 0, b = 0;
+};
+
+// Mean linear-ish colour (sRGB bytes / 255) of rows [y0, y1) of the image.
+Rgb meanColor(const planet::Rgba8Image& image, uint32_t y0, uint32_t y1) {
+  Rgb sum;
+  size_t n = 0;
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+      sum.r += p[0] / 255.0;
+      sum.g += p[1] / 255.0;
+      sum.b += p[2] / 255.0;
+      ++n;
+    }
+  return {sum.r / n, sum.g / n, sum.b / n};
+}
+
+TEST(Viewer, DescentPathDrawsThePlanetWithoutValidationMessagesOrLeaks) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb)";
+  const fs::path shot = tempDir() / "descent.png";
+  const planet::ProcessResult run =
+      viewUnderXvfb({"--validation", "view", "--size", "480x270", "--quality", "low", "--vsync", "off", "--frames",
+                     "300", "--path", PLANET_TEST_DATA_DIR "/viewer_descent.path", "--screenshot", shot.string()});
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  EXPECT_EQ(run.err.find("validation message"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("VUID"), std::string::npos) << run.err;
+
+  // Memory after the warm-up frames equals memory at the end: nothing allocated per frame.
+  const std::regex memory(
+      R"(memory after frame (\d+): (\d+) allocations, (\d+) bytes used, (\d+) blocks, RSS (\d+) KiB; after frame (\d+): (\d+) allocations, (\d+) bytes used, (\d+) blocks, RSS (\d+) KiB)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.out, m, memory)) << run.out;
+  EXPECT_EQ(m[6].str(), "300");
+  EXPECT_EQ(m[2].str(), m[7].str()) << "live allocations changed after warm-up";
+  EXPECT_EQ(m[3].str(), m[8].str()) << "bytes in use changed after warm-up";
+  EXPECT_EQ(m[4].str(), m[9].str()) << "memory blocks changed after warm-up";
+  // Process memory: lavapipe compiles shader variants on first use, so allow some growth, but
+  // not a per-frame leak (300 frames of a 480x270 RGBA8 frame alone would be ~150 MiB).
+  const double rssGrowthMiB = (std::stod(m[10].str()) - std::stod(m[5].str())) / 1024.0;
+  EXPECT_LT(rssGrowthMiB, 64.0) << run.out;
+
+  // The screenshot is the last frame of the path, 300 m above the ground looking toward the
+  // horizon, at the render size (half the window at quality low): sky above, ground below.
+  const planet::Rgba8Image image = planet::readPng(shot.string());
+  ASSERT_EQ(image.width, 240u);
+  ASSERT_EQ(image.height, 135u);
+  const Rgb sky = meanColor(image, 0, image.height / 6);
+  const Rgb ground = meanColor(image, image.height * 5 / 6, image.height);
+  EXPECT_GT(sky.b, sky.r) << "the sky should be blue";
+  EXPECT_GT(sky.b, 0.3) << "the sky should be bright in daylight";
+  const double difference = std::abs(sky.r - ground.r) + std::abs(sky.g - ground.g) + std::abs(sky.b - ground.b);
+  EXPECT_GT(difference, 0.1) << "ground and sky look alike: sky " << sky.r << "," << sky.g << "," << sky.b << " ground "
+                             << ground.r << "," << ground.g << "," << ground.b;
+}
+
+TEST(Viewer, WithoutADisplayItSaysSoAndPointsToRender) {
+  const planet::ProcessResult run =
+      planet::runProcess({"env", "-u", "DISPLAY", "-u", "WAYLAND_DISPLAY", PLANET_EXE, "view", "--frames", "1"}, "");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("cannot open a window"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("planet render"), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+}
+
+}  // namespace
