@@ -96,6 +96,59 @@ TEST(Viewer, DescentPathDrawsThePlanetWithoutValidationMessagesOrLeaks) {
                              << ground.r << "," << ground.g << "," << ground.b;
 }
 
+bool haveXdotool() { return planet::runProcess({"sh", "-c", "command -v xdotool"}, "").exitCode == 0; }
+
+TEST(Viewer, SurvivesAResizeStormAndSavesAScreenshotOnF12) {
+  if (!haveXvfb() || !haveXdotool()) GTEST_SKIP() << "xvfb-run or xdotool is not installed (Debian: xvfb, xdotool)";
+  const fs::path shot = tempDir() / "storm.png";
+  // The viewer runs in the background (until SIGINT, as Ctrl-C) while xdotool resizes its window 12 times, down to
+  // 1x1 and up to 1000x700; each resize makes the swapchain out of date (or suboptimal).
+  const fs::path log = tempDir() / "storm.err";
+  // Started once the renderer is built (its log line), so that every resize meets a running
+  // frame loop; the viewer's standard error is passed on afterwards.
+  const fs::path keyDir = tempDir() / "storm_key";
+  fs::create_directories(keyDir);
+  const std::string script = "cd " + keyDir.string() + " && " + std::string(PLANET_EXE) +
+                             " --validation view --size 320x180 --quality low --vsync off --screenshot " + shot.string() +
+                             " 2> " + log.string() +
+                             " & pid=$!\n"
+                             "for i in $(seq 300); do grep -q 'built in' " + log.string() +
+                             " 2>/dev/null && break; sleep 0.1; done\n"
+                             "w=$(xdotool search --name '^planet' | head -1)\n"
+                             "for size in 400x300 1x1 900x700 200x120 640x360 33x17 500x500 2x300 800x200 320x240 1000x700 64x64; do\n"
+                             "  xdotool windowsize \"$w\" ${size%x*} ${size#*x}; sleep 0.25; done\n"
+                             "xdotool windowsize \"$w\" 480 270; sleep 2\n"
+                             // The screenshot key, as a person presses it (XTEST; the pointer
+                             // gives the window the focus without a window manager).
+                             "xdotool mousemove --window \"$w\" 20 20 key F12; sleep 2; kill -INT $pid\n"
+                             "wait $pid; status=$?; cat " + log.string() + " >&2; exit $status\n";
+  const planet::ProcessResult run =
+      planet::runProcess({"xvfb-run", "-a", "-s", "-screen 0 1024x768x24", "sh", "-c", script}, "");
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  EXPECT_EQ(run.err.find("validation message"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("VUID"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("frames: "), std::string::npos) << run.out;
+  const std::regex recreated(R"(swapchain recreated (\d+) times)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.out, m, recreated)) << run.out;
+  EXPECT_GE(std::stoi(m[1].str()), 6) << "the storm did not reach the swapchain: " << run.out;
+  // Ctrl-C ended it cleanly (exit 0 above), and the last frame was drawn for the last window
+  // size, at half of it (quality low).
+  const planet::Rgba8Image image = planet::readPng(shot.string());
+  EXPECT_EQ(image.width, 240u);
+  EXPECT_EQ(image.height, 135u);
+  // F12 saved the frame (without the panel) as planet-YYYYMMDD-HHMMSS.png in the working folder.
+  std::vector<fs::path> saved;
+  for (const fs::directory_entry& entry : fs::directory_iterator(keyDir))
+    if (entry.path().filename().string().rfind("planet-", 0) == 0) saved.push_back(entry.path());
+  ASSERT_EQ(saved.size(), 1u) << run.err;
+  EXPECT_NE(run.err.find("saved " + saved[0].filename().string()), std::string::npos) << run.err;
+  const planet::Rgba8Image keyShot = planet::readPng(saved[0].string());
+  EXPECT_EQ(keyShot.width, 240u);
+  EXPECT_EQ(keyShot.height, 135u);
+}
+
 TEST(Viewer, WithoutADisplayItSaysSoAndPointsToRender) {
   const planet::ProcessResult run =
       planet::runProcess({"env", "-u", "DISPLAY", "-u", "WAYLAND_DISPLAY", PLANET_EXE, "view", "--frames", "1"}, "");

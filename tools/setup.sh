@@ -22,7 +22,7 @@ packages=(
   libstb-dev
   python3-matplotlib
   libglfw3-dev libimgui-dev
-  xvfb xauth
+  xvfb xauth xdotool
 )
 
 missing=()

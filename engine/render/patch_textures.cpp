@@ -101,9 +101,13 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     for (LayerResources& layer : layers_) {
       const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
-      layer.level = vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload);
-      layer.remainders = vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
-      layer.shifts = vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+      for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+        layer.level[slot] = vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload);
+        layer.remainders[slot] =
+            vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
+        layer.shifts[slot] =
+            vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+      }
       layer.heights = vk::createBuffer(context_, side * side * sizeof(float), storage, vk::MemoryUsage::DeviceLocal);
     }
     createPipelines();
@@ -121,9 +125,11 @@ void PatchTextures::release() {
   vk::destroyComputePipeline(context_, heightPipeline_);
   for (LayerResources& layer : layers_) {
     vk::destroyBuffer(context_, layer.heights);
-    vk::destroyBuffer(context_, layer.shifts);
-    vk::destroyBuffer(context_, layer.remainders);
-    vk::destroyBuffer(context_, layer.level);
+    for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;) {
+      vk::destroyBuffer(context_, layer.shifts[slot]);
+      vk::destroyBuffer(context_, layer.remainders[slot]);
+      vk::destroyBuffer(context_, layer.level[slot]);
+    }
   }
   layers_.clear();
   if (sampler_) vkDestroySampler(context_.device, sampler_, nullptr);
@@ -135,22 +141,24 @@ void PatchTextures::createPipelines() {
   vk::destroyComputePipeline(context_, normalPipeline_);
   vk::destroyComputePipeline(context_, heightPipeline_);
   specialization_ = layerSpecialization(data_.planet());
-  const uint32_t sets = settings_.levelCount;
+  const uint32_t sets = settings_.levelCount * vk::kFramesInFlight;
   heightPipeline_ = vk::createComputePipeline(context_, kSpv_patch_height_comp, kBindings, 0, specialization_, sets);
   normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
   const VkDescriptorType buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   for (LayerResources& layer : layers_) {
-    for (const vk::ComputePipeline* pipeline : {&heightPipeline_, &normalPipeline_}) {
-      VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, layer.level);
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, layer.remainders);
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, layer.shifts);
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, layer.heights);
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLayers, buffer, data_.layers());
-      vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingPermutations, buffer, data_.permutations());
-      vk::writeImageDescriptor(context_, set, gpu::kPatchBindingImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, image_.view,
-                               VK_IMAGE_LAYOUT_GENERAL);
-      (pipeline == &heightPipeline_ ? layer.heightSet : layer.normalSet) = set;
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      for (const vk::ComputePipeline* pipeline : {&heightPipeline_, &normalPipeline_}) {
+        VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, layer.level[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, layer.remainders[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, layer.shifts[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, layer.heights);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLayers, buffer, data_.layers());
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingPermutations, buffer, data_.permutations());
+        vk::writeImageDescriptor(context_, set, gpu::kPatchBindingImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, image_.view,
+                                 VK_IMAGE_LAYOUT_GENERAL);
+        (pipeline == &heightPipeline_ ? layer.heightSet : layer.normalSet)[slot] = set;
+      }
     }
   }
 }
@@ -159,7 +167,8 @@ void PatchTextures::invalidate() {
   for (LayerContent& content : contents_) content.valid = false;
 }
 
-void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources) {
+void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources,
+                               uint32_t slot) {
   const PlanetDescription& planet = data_.planet();
   const CubeFace face = cubeFace(layout.face);
   const double texel = std::ldexp(1.0, level.exponent);
@@ -194,13 +203,13 @@ void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& leve
     const OctaveBudget budget = octaveBudget(planet.layers[l], spacingM);
     params.budgets[l] = {budget.octaves, budget.lastOctaveWeight, 0u, 0u};
   }
-  char* levelData = static_cast<char*>(resources.level.mapped());
+  char* levelData = static_cast<char*>(resources.level[slot].mapped());
   std::memcpy(levelData, &params, sizeof(params));
 
   // Each tile's anchor, its centre texel (face index k·T + T/2), in double; then its tables.
   auto* tiles = reinterpret_cast<gpu::PatchTile*>(levelData + sizeof(params));
-  auto* remainders = static_cast<glm::vec4*>(resources.remainders.mapped());
-  auto* shifts = static_cast<glm::uvec4*>(resources.shifts.mapped());
+  auto* remainders = static_cast<glm::vec4*>(resources.remainders[slot].mapped());
+  auto* shifts = static_cast<glm::uvec4*>(resources.shifts[slot].mapped());
   const size_t rowsPerTile = planet.layers.size() * gpu::kNoiseMaxOctaves;
   for (uint32_t ty = 0; ty < tilesB; ++ty) {
     for (uint32_t tx = 0; tx < tilesA; ++tx) {
@@ -216,12 +225,14 @@ void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& leve
       std::copy(tables.shifts.begin(), tables.shifts.end(), shifts + index * rowsPerTile);
     }
   }
-  context_.allocator.flush(resources.level.allocation);
-  context_.allocator.flush(resources.remainders.allocation);
-  context_.allocator.flush(resources.shifts.allocation);
+  context_.allocator.flush(resources.level[slot].allocation);
+  context_.allocator.flush(resources.remainders[slot].allocation);
+  context_.allocator.flush(resources.shifts[slot].allocation);
 }
 
-uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
+uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
+  if (slot >= vk::kFramesInFlight)
+    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
   if (layout.resolution != settings_.resolution)
     throw Error(fmt::format("patch layout resolution {} differs from the patch textures' {}", layout.resolution,
                             settings_.resolution));
@@ -240,9 +251,9 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
                               level.exponent));
   }
   // The planet's layer types or hashes changed: the height pipeline is specialized on them.
-  // The previous update's command buffer has completed (see the header), so the old pipelines
-  // are no longer in use.
+  // A frame of the other slot may still use the old pipelines and sets: wait for it (rare).
   if (layerSpecialization(data_.planet()) != specialization_) {
+    VK_CHECK(vkDeviceWaitIdle(context_.device));
     createPipelines();
     invalidate();
   }
@@ -257,7 +268,7 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
   }
   if (stale.empty()) return 0;
 
-  for (const PatchLevel* level : stale) writeLevel(layout, *level, layers_[level->layer]);
+  for (const PatchLevel* level : stale) writeLevel(layout, *level, layers_[level->layer], slot);
 
   // Earlier frames' fragment shaders may still sample these layers and an earlier update's
   // passes used the height buffers: both finish before the new writes (write-after-read).
@@ -267,8 +278,8 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.pipeline);
   for (const PatchLevel* level : stale) {
     const LayerResources& resources = layers_[level->layer];
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.layout, 0, 1, &resources.heightSet, 0,
-                            nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.layout, 0, 1,
+                            &resources.heightSet[slot], 0, nullptr);
     vkCmdDispatch(cmd, resources.heightGroupsA, resources.heightGroupsB, 1);
   }
   // The normal pass reads the heights (with their border) that the height pass wrote.
@@ -278,7 +289,7 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.pipeline);
   for (const PatchLevel* level : stale) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.layout, 0, 1,
-                            &layers_[level->layer].normalSet, 0, nullptr);
+                            &layers_[level->layer].normalSet[slot], 0, nullptr);
     vkCmdDispatch(cmd, normalGroups, normalGroups, 1);
   }
   // The terrain's fragment shader samples the new texels.

@@ -54,16 +54,19 @@ class PatchTextures {
   // is rebuilt when its layer does not already hold exactly (face, exponent, originA, originB)
   // for this planet, or after invalidate(). Returns how many levels it recorded a rebuild for
   // (0: nothing recorded, not even a barrier). The rebuilt levels' parameters and octave tables
-  // are written now into host-visible buffers owned per layer, so the caller must let `cmd`
-  // complete (wait for its fence) before calling update() again, and must submit `cmd`: the
-  // levels count as up to date from this call on. The image stays in VK_IMAGE_LAYOUT_GENERAL;
+  // are written now into host-visible buffers owned per layer and frame slot (`slot` <
+  // vk::kFramesInFlight), so update() may be called while a command buffer recorded for another
+  // slot still executes, but not while one recorded for the same slot does (wait for its fence).
+  // The caller must submit `cmd`, in the order of the update() calls: the levels count as up to
+  // date from this call on. The image stays in VK_IMAGE_LAYOUT_GENERAL;
   // the recorded work ends with a barrier that makes it visible to fragment-shader sampling.
   // The height pass is specialized on the planet's layer count, types and hashes; should those
-  // differ from the last call's, both pipelines are recreated here and every level rebuilt.
+  // differ from the last call's, both pipelines are recreated here (after waiting for the device
+  // to be idle: a frame in flight may still use them) and every level rebuilt.
   // Throws planet::Error if layout.resolution or the number of levels differs from the
-  // settings, for a bad face, a layer outside 0..levelCount−1 or used twice, or an exponent
-  // outside [−60, 60]; then nothing was recorded or marked up to date.
-  uint32_t update(VkCommandBuffer cmd, const PatchLayout& layout);
+  // settings, for a bad face, a layer outside 0..levelCount−1 or used twice, an exponent
+  // outside [−60, 60], or a bad slot; then nothing was recorded or marked up to date.
+  uint32_t update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot = 0);
 
   // Marks every level stale, e.g. after the planet's parameters changed.
   void invalidate();
@@ -84,13 +87,14 @@ class PatchTextures {
     int64_t originA = 0;
     int64_t originB = 0;
   };
+  // The host-visible buffers and the descriptor sets that point at them, one per frame slot.
   struct LayerResources {
-    vk::Buffer level;       // host-visible: gpu::PatchLevelParams, then gpu::PatchTile per tile
-    vk::Buffer remainders;  // host-visible: each tile's octave remainders
-    vk::Buffer shifts;      // host-visible: each tile's octave lattice shifts
-    vk::Buffer heights;     // device-local: (resolution + 2)² floats
-    VkDescriptorSet heightSet = VK_NULL_HANDLE;
-    VkDescriptorSet normalSet = VK_NULL_HANDLE;
+    vk::Buffer level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
+    vk::Buffer remainders[vk::kFramesInFlight];  // each tile's octave remainders
+    vk::Buffer shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
+    vk::Buffer heights;                          // device-local: (resolution + 2)² floats, GPU-written
+    VkDescriptorSet heightSet[vk::kFramesInFlight] = {};
+    VkDescriptorSet normalSet[vk::kFramesInFlight] = {};
     uint32_t heightGroupsA = 0;  // the height pass's dispatch for the level last written
     uint32_t heightGroupsB = 0;
   };
@@ -99,7 +103,7 @@ class PatchTextures {
   // (Re)creates both pipelines, the height one specialized for the planet's current layers,
   // and points each layer's descriptor sets at its resources.
   void createPipelines();
-  void writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources);
+  void writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources, uint32_t slot);
 
   vk::Context& context_;
   const PlanetGpuData& data_;

@@ -49,7 +49,7 @@ Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const 
     }
     createTargets();
     if (context.timestampValidBits) {
-      timer_.create(context, 16);
+      for (vk::GpuTimer& timer : timers_) timer.create(context, 16);
       timerCreated_ = true;
     }
   } catch (...) {
@@ -61,7 +61,8 @@ Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const 
 Renderer::~Renderer() { release(); }
 
 void Renderer::release() {
-  if (timerCreated_) timer_.destroy(context_);
+  // destroy() skips a timer that was never created (a throw between the two creates).
+  for (vk::GpuTimer& timer : timers_) timer.destroy(context_);
   timerCreated_ = false;
   destroyTargets();
   stars_.reset();
@@ -101,8 +102,18 @@ void Renderer::setSkySettings(const SkySettings& sky) {
   sky_->setSettings(sky);
 }
 
-std::vector<vk::GpuTiming> Renderer::lastTimings() const {
-  return timerCreated_ ? timer_.results(context_) : std::vector<vk::GpuTiming>{};
+namespace {
+
+void checkSlot(uint32_t slot) {
+  if (slot >= Renderer::kFramesInFlight)
+    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, Renderer::kFramesInFlight - 1));
+}
+
+}  // namespace
+
+std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
+  checkSlot(slot);
+  return timerCreated_ ? timers_[slot].results(context_) : std::vector<vk::GpuTiming>{};
 }
 
 CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const {
@@ -143,7 +154,10 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 }  // namespace
 
-Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS) {
+Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS,
+                                     uint32_t slot) {
+  checkSlot(slot);
+  preparedSlot_ = UINT32_MAX;  // until this prepare() completed
   Prepared prepared;
   prepared.camera = clampToGround(requested, &prepared.cameraRaised);
   TerrainView view;
@@ -153,7 +167,7 @@ Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dve
   view.height = settings_.height;
   view.sunDirection = sunPlanet;
   view.timeS = timeS;
-  const TerrainFrameInfo& frame = terrain_->prepare(view);
+  const TerrainFrameInfo& frame = terrain_->prepare(view, slot);
 
   // The sky is drawn around the camera: its frame, also while the terrain's LOD is frozen.
   const glm::dmat3 planetToLocal = glm::transpose(frame.viewOrientation.localToPlanet);
@@ -169,16 +183,21 @@ Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dve
   skyView.nearPlaneM = frame.nearPlaneM;
   skyView.timeS = timeS;
   skyView.pixelAngleRad = view.fovYRad / double(view.height);
-  sky_->prepare(skyView, settings_.width, settings_.height);
-  // Stars are fixed in the planet frame: planet direction → local → clip.
+  sky_->prepare(skyView, settings_.width, settings_.height, slot);
+  // Stars are fixed in the planet frame: planet direction → local → clip (a push constant).
   starsToClip_ = glm::mat4(skyView.viewProjection * glm::dmat4(planetToLocal));
   prepared.terrain = frame;
+  preparedSlot_ = slot;
   return prepared;
 }
 
-void Renderer::record(VkCommandBuffer cmd) {
+void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
+  checkSlot(slot);
+  if (slot != preparedSlot_)
+    throw Error(fmt::format("Renderer::record for frame slot {} without a prepare() for it", slot));
+  preparedSlot_ = UINT32_MAX;
   const VkExtent2D extent{settings_.width, settings_.height};
-  vk::GpuTimer* timer = timerCreated_ ? &timer_ : nullptr;
+  vk::GpuTimer* timer = timerCreated_ ? &timers_[slot] : nullptr;
   if (timer) timer->reset(cmd);
   skyTables_->recordBuild(cmd, timer);
   if (stars_) stars_->recordGenerate(cmd, timer);
@@ -224,11 +243,12 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, d
   RenderResult result;
   // The sun is placed from the camera's ground point as rendered (after the eye-height rule).
   const CameraPose camera = clampToGround(requested);
-  const Prepared prepared = prepare(requested, sunDirection(sun, camera), timeS);
+  // One frame at a time (the submission is waited for): slot 0 always.
+  const Prepared prepared = prepare(requested, sunDirection(sun, camera), timeS, 0);
   result.camera = prepared.camera;
   result.cameraRaised = prepared.cameraRaised;
-  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd); });
-  result.timings = lastTimings();
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });
+  result.timings = lastTimings(0);
   result.terrain = terrain_->frame();
   std::vector<uint8_t> pixels = vk::readbackImage(context_, color_);
   result.image.width = settings_.width;

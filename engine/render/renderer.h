@@ -65,21 +65,33 @@ class Renderer {
   RenderResult render(const CameraPose& camera, const SunPose& sun, double timeS = 0.0, bool readHdr = false);
 
   // The two halves of render(), for a caller that records into its own command buffer (the
-  // viewer). prepare(): the CPU half (eye-height rule, clipmap orientation, cuts, uniforms);
-  // `sunPlanet` is the unit direction toward the sun in the planet frame. It writes host-visible
-  // buffers that the previous frame's commands read: call it only after that frame completed.
-  // record(): every pass into `cmd`, ending with output() in COLOR_ATTACHMENT_OPTIMAL.
+  // viewer), with up to kFramesInFlight frames in flight: frame slot `slot` (0 ..
+  // kFramesInFlight − 1) owns its own copy of everything the CPU writes per frame (uniforms,
+  // octave tables, patch-level parameters, CPU heights staging) and its own timestamp queries.
+  // prepare(): the CPU half (eye-height rule, clipmap orientation, cuts, uniforms); `sunPlanet`
+  // is the unit direction toward the sun in the planet frame. It may be called while the frame
+  // of the other slot is still executing; it must not be called while a frame of the same slot
+  // is (wait for that slot's fence first).
+  // record(): every pass into `cmd` for the frame just prepared (same slot; no other prepare()
+  // in between), ending with output() in COLOR_ATTACHMENT_OPTIMAL. Submit the command buffers
+  // in the order of the record() calls, on the context's queue: the GPU-written resources the
+  // slots share (heights, patch textures, targets) are ordered by that queue and the barriers.
+  // Throws planet::Error for a slot outside 0 .. kFramesInFlight − 1 or a record() whose slot
+  // is not the last prepared one.
+  static constexpr uint32_t kFramesInFlight = vk::kFramesInFlight;
   struct Prepared {
     CameraPose camera;  // as rendered
     bool cameraRaised = false;
     TerrainFrameInfo terrain;
   };
-  Prepared prepare(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS);
-  void record(VkCommandBuffer cmd);
-  // The tonemapped sRGB frame (RGBA8) that record() leaves, and the GPU times of the last
-  // recorded frame's passes (read after its fence signalled; empty without timestamps).
+  Prepared prepare(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS, uint32_t slot);
+  void record(VkCommandBuffer cmd, uint32_t slot);
+  // The tonemapped sRGB frame (RGBA8) that record() leaves (shared by the slots: the next
+  // recorded frame rewrites it, so read it only when no frame is in flight), and the GPU times
+  // of the passes of the last frame recorded for `slot` (read after its fence signalled; empty
+  // without timestamps or before that slot's first frame).
   vk::Image& output() { return color_; }
-  std::vector<vk::GpuTiming> lastTimings() const;
+  std::vector<vk::GpuTiming> lastTimings(uint32_t slot) const;
   // New target size (the window was resized); the passes keep everything else. Call only
   // when no submitted frame still uses the targets.
   void resize(uint32_t width, uint32_t height);
@@ -111,7 +123,8 @@ class Renderer {
   vk::Image color_;
   vk::Image depth_;
   glm::mat4 starsToClip_{1.0f};
-  vk::GpuTimer timer_;
+  uint32_t preparedSlot_ = UINT32_MAX;    // of the last prepare(), until its record()
+  vk::GpuTimer timers_[kFramesInFlight];  // one query pool per frame slot
   bool timerCreated_ = false;
 };
 

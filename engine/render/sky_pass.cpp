@@ -61,25 +61,27 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
   validateSkySettings(settings);
   try {
-    uniforms_ = vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                 vk::MemoryUsage::Upload);
+    for (vk::Buffer& uniforms : uniforms_)
+      uniforms = vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  vk::MemoryUsage::Upload);
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = VK_FILTER_NEAREST;
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     VK_CHECK(vkCreateSampler(context.device, &info, nullptr, &depthSampler_));
 
     composeSetLayout_ = vk::createSetLayout(context, kComposeBindings, VK_SHADER_STAGE_COMPUTE_BIT);
-    composePool_ = vk::createDescriptorPool(context, kComposeBindings, 1);
-    composeSet_ = vk::allocateSet(context, composePool_, composeSetLayout_);
+    composePool_ = vk::createDescriptorPool(context, kComposeBindings, vk::kFramesInFlight);
     composeLayout_ = vk::createPipelineLayout(context, composeSetLayout_, 0, 0);
     composePipeline_ = vk::createComputePipelineWithLayout(context, kSpv_sky_comp, composeLayout_);
-    vk::writeBufferDescriptor(context, composeSet_, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                              uniforms_);
-    vk::writeImageDescriptor(context, composeSet_, gpu::kSkyBindingTransmittance,
-                             VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, tables.transmittanceView(),
-                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
-    vk::writeImageDescriptor(context, composeSet_, gpu::kSkyBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             tables.cloudCoverView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      VkDescriptorSet set = composeSets_[slot] = vk::allocateSet(context, composePool_, composeSetLayout_);
+      vk::writeBufferDescriptor(context, set, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                uniforms_[slot]);
+      vk::writeImageDescriptor(context, set, gpu::kSkyBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                               tables.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
+      vk::writeImageDescriptor(context, set, gpu::kSkyBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                               tables.cloudCoverView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
+    }
 
     tonemapSetLayout_ = vk::createSetLayout(context, kTonemapBindings, VK_SHADER_STAGE_FRAGMENT_BIT);
     tonemapPool_ = vk::createDescriptorPool(context, kTonemapBindings, 1);
@@ -119,14 +121,17 @@ void SkyPass::release() {
   tonemapPool_ = composePool_ = VK_NULL_HANDLE;
   tonemapSetLayout_ = composeSetLayout_ = VK_NULL_HANDLE;
   depthSampler_ = VK_NULL_HANDLE;
-  vk::destroyBuffer(context_, uniforms_);
+  for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;) vk::destroyBuffer(context_, uniforms_[slot]);
+  for (VkDescriptorSet& set : composeSets_) set = VK_NULL_HANDLE;  // went with the pool
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
-  vk::writeImageDescriptor(context_, composeSet_, gpu::kSkyBindingColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr.view,
-                           VK_IMAGE_LAYOUT_GENERAL);
-  vk::writeImageDescriptor(context_, composeSet_, gpu::kSkyBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                           depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depthSampler_);
+  for (VkDescriptorSet set : composeSets_) {
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr.view,
+                             VK_IMAGE_LAYOUT_GENERAL);
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depthSampler_);
+  }
   vk::writeImageDescriptor(context_, tonemapSet_, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr.view,
                            VK_IMAGE_LAYOUT_GENERAL);
   width_ = hdr.extent.width;
@@ -138,7 +143,10 @@ void SkyPass::setSettings(const SkySettings& settings) {
   settings_ = settings;
 }
 
-void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height) {
+void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot) {
+  if (slot >= vk::kFramesInFlight)
+    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
+  slot_ = slot;
   gpu::SkyUniforms& u = uniformData_;
   u = gpu::SkyUniforms{};
   u.atmosphere = tables_.atmosphere();
@@ -159,13 +167,14 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height) {
   u.cloudMotion = glm::vec4(motion.weights, motion.driftRad);
   for (int k = 0; k < kSkyIrradianceSamples; ++k) u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)];
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), 0.0f);
-  vk::uploadBuffer(context_, uniforms_, &u, sizeof(u));
+  // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
+  vk::uploadBuffer(context_, uniforms_[slot], &u, sizeof(u));
 }
 
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "sky");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, composePipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, composeLayout_, 0, 1, &composeSet_, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, composeLayout_, 0, 1, &composeSets_[slot_], 0, nullptr);
   const uint32_t group = gpu::kSkyWorkgroupSize;
   vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
   if (timer) timer->end(cmd);

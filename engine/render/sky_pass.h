@@ -55,9 +55,12 @@ class SkyPass {
   // Points the passes at the frame's HDR colour (storage, GENERAL while composing) and depth
   // (sampled) images; call again when they are recreated.
   void setTargets(const vk::Image& hdr, const vk::Image& depth);
-  // Writes the frame's uniforms (before recording).
-  void prepare(const SkyView& view, uint32_t width, uint32_t height);
-  // Compose: hdr in GENERAL and depth in SHADER_READ_ONLY_OPTIMAL, both after the draws.
+  // Writes the frame's uniforms (before recording) into frame slot `slot`'s buffer (<
+  // vk::kFramesInFlight): call it while no frame recorded for that slot is executing; a frame of
+  // the other slot may be.
+  void prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot = 0);
+  // Compose, reading the last prepared frame's uniforms: hdr in GENERAL and depth in
+  // SHADER_READ_ONLY_OPTIMAL, both after the draws.
   void recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer);
   // Tonemap: inside a dynamic-rendering scope on the output target.
   void recordTonemap(VkCommandBuffer cmd, vk::GpuTimer* timer);
@@ -74,11 +77,12 @@ class SkyPass {
   PlanetDescription planet_;
   const SkyTables& tables_;
   SkySettings settings_;
-  vk::Buffer uniforms_;
+  vk::Buffer uniforms_[vk::kFramesInFlight];  // per frame slot, host-visible
   gpu::SkyUniforms uniformData_{};
+  uint32_t slot_ = 0;  // of the last prepare()
   VkDescriptorSetLayout composeSetLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool composePool_ = VK_NULL_HANDLE;
-  VkDescriptorSet composeSet_ = VK_NULL_HANDLE;
+  VkDescriptorSet composeSets_[vk::kFramesInFlight] = {};  // each reads its slot's uniforms
   VkPipelineLayout composeLayout_ = VK_NULL_HANDLE;
   VkPipeline composePipeline_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout tonemapSetLayout_ = VK_NULL_HANDLE;

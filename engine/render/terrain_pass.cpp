@@ -125,29 +125,34 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     surface_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
     normals_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
     attributes_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
-    // Per-frame data the CPU writes: host-visible.
-    remainders_ = vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
-    shifts_ = vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
-    uniforms_ = vk::createBuffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                 vk::MemoryUsage::Upload);
-    if (settings.heightSource == HeightSource::Cpu)
-      cpuStaging_ = vk::createBuffer(context, 2 * vertexCount * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                     vk::MemoryUsage::Upload);
+    // Per-frame data the CPU writes: host-visible, one copy per frame slot.
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      remainders_[slot] = vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
+      shifts_[slot] = vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
+      uniforms_[slot] = vk::createBuffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                         vk::MemoryUsage::Upload);
+      if (settings.heightSource == HeightSource::Cpu)
+        cpuStaging_[slot] = vk::createBuffer(context, 2 * vertexCount * sizeof(glm::vec4),
+                                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
+    }
 
     const VkShaderStageFlags stages =
         VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     setLayout_ = vk::createSetLayout(context, kBindingTypes, stages);
-    pool_ = vk::createDescriptorPool(context, kBindingTypes, 1);
-    set_ = vk::allocateSet(context, pool_, setLayout_);
-    const vk::Buffer* buffers[] = {
-        &uniforms_, &meshVertices_,         &surface_, &normals_, &attributes_, &data_->layers(), &remainders_,
-        &shifts_,   &data_->permutations(), &budgets_};
-    for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
-      vk::writeBufferDescriptor(context, set_, b, kBindingTypes[b], *buffers[b]);
-    vk::writeImageDescriptor(context, set_, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
-    vk::writeImageDescriptor(context, set_, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
+    pool_ = vk::createDescriptorPool(context, kBindingTypes, vk::kFramesInFlight);
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      VkDescriptorSet set = sets_[slot] = vk::allocateSet(context, pool_, setLayout_);
+      const vk::Buffer* buffers[] = {&uniforms_[slot],       &meshVertices_,   &surface_,          &normals_,
+                                     &attributes_,           &data_->layers(), &remainders_[slot], &shifts_[slot],
+                                     &data_->permutations(), &budgets_};
+      for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
+        vk::writeBufferDescriptor(context, set, b, kBindingTypes[b], *buffers[b]);
+      vk::writeImageDescriptor(context, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                               patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
+      vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance,
+                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sky.transmittanceView(),
+                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
+    }
 
     layout_ =
         vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
@@ -205,11 +210,13 @@ void TerrainPass::buildForToggles() {
   VkPipeline& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
   if (!draw) draw = createDrawPipeline(settings_.wireframe);
   if (settings_.patches && !settings_.wireframe && !fullPatches_) {
-    // The pass started in wireframe with a stand-in. The previous frame has completed (see
-    // prepare()), so neither the old textures nor the descriptor set are in use.
+    // The pass started in wireframe with a stand-in. A frame of the other slot may still use
+    // the old textures and the descriptor sets: wait for every frame (once per pass).
+    VK_CHECK(vkDeviceWaitIdle(context_.device));
     auto patches = std::make_unique<PatchTextures>(context_, *data_, settings_.patchSettings);
-    vk::writeImageDescriptor(context_, set_, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             patches->image().view, VK_IMAGE_LAYOUT_GENERAL, patches->sampler());
+    for (VkDescriptorSet set : sets_)
+      vk::writeImageDescriptor(context_, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                               patches->image().view, VK_IMAGE_LAYOUT_GENERAL, patches->sampler());
     patches_ = std::move(patches);
     fullPatches_ = true;
     if (lod_) lod_->patchLayout = PatchLayout{};  // chosen for the new textures' settings
@@ -230,9 +237,12 @@ void TerrainPass::release() {
   waterPipeline_ = wireframePipeline_ = fillPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
   layout_ = noiseDrawLayout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
+  for (VkDescriptorSet& set : sets_) set = VK_NULL_HANDLE;  // went with the pool
   setLayout_ = VK_NULL_HANDLE;
-  for (vk::Buffer* b : {&cpuStaging_, &uniforms_, &shifts_, &remainders_, &attributes_, &normals_, &surface_, &budgets_,
-                        &indices_, &meshVertices_})
+  for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;)
+    for (vk::Buffer* b : {&cpuStaging_[slot], &uniforms_[slot], &shifts_[slot], &remainders_[slot]})
+      vk::destroyBuffer(context_, *b);
+  for (vk::Buffer* b : {&attributes_, &normals_, &surface_, &budgets_, &indices_, &meshVertices_})
     vk::destroyBuffer(context_, *b);
   patches_.reset();
   data_.reset();
@@ -262,12 +272,20 @@ TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFr
 
   // Octave tables around the anchor, the sea-sphere point below the camera.
   tables_ = buildOctaveTables(planet_, radius * orientation.nadirDirection());
-  vk::uploadBuffer(context_, remainders_, tables_.remainders.data(), tables_.remainders.size() * sizeof(glm::vec4));
-  vk::uploadBuffer(context_, shifts_, tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
   return lod;
 }
 
-const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
+void TerrainPass::writeTables() {
+  // Host-visible: plain copies, no submission (the slot's previous frame has completed).
+  vk::uploadBuffer(context_, remainders_[slot_], tables_.remainders.data(),
+                   tables_.remainders.size() * sizeof(glm::vec4));
+  vk::uploadBuffer(context_, shifts_[slot_], tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
+}
+
+const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t slot) {
+  if (slot >= vk::kFramesInFlight)
+    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
+  slot_ = slot;
   const double radius = planet_.radiusM;
   buildForToggles();
   TerrainFrameInfo info;
@@ -290,6 +308,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view) {
 
   info.lodFrozen = freezeLod_ && lod_;
   if (!info.lodFrozen) lod_ = chooseLod(view, info.viewOrientation, info.heightAboveGroundM);
+  writeTables();
   Lod& lod = *lod_;
   const bool patches = settings_.patches && !settings_.wireframe;
   if (patches && lod.patchLayout.levels.empty())
@@ -399,7 +418,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
                              float(kWaveShare[i]));
     }
   }
-  vk::uploadBuffer(context_, uniforms_, &u, sizeof(u));
+  vk::uploadBuffer(context_, uniforms_[slot_], &u, sizeof(u));
 }
 
 gpu::TerrainComputePush TerrainPass::heightPush() const {
@@ -427,9 +446,10 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   job.firstVertex = firstVertex;
   job.vertexCount = vertexCount;
   const VkDeviceSize vertices = mesh_.vertexCount();
-  glm::vec4* staging = static_cast<glm::vec4*>(cpuStaging_.mapped());
+  const vk::Buffer& stagingBuffer = cpuStaging_[slot_];
+  glm::vec4* staging = static_cast<glm::vec4*>(stagingBuffer.mapped());
   const auto start = std::chrono::steady_clock::now();
-  // The previous frame's copy out of the staging buffer has finished: its fence was waited for.
+  // The slot's previous copy out of this staging buffer has finished: its fence was waited for.
   computeSurfaceCpu(job, settings_.cpuThreads, staging, staging + vertices);
   frame_.cpuHeightsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const VkDeviceSize v4 = sizeof(glm::vec4);
@@ -437,8 +457,9 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   const VkBufferCopy surface[2] = {{firstVertex * v4, firstVertex * v4, vertexCount * v4}, {pole * v4, pole * v4, v4}};
   const VkBufferCopy attributes[2] = {{(vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
                                       {(vertices + pole) * v4, pole * v4, v4}};
-  vkCmdCopyBuffer(cmd, cpuStaging_.buffer, surface_.buffer, 2, surface);
-  vkCmdCopyBuffer(cmd, cpuStaging_.buffer, attributes_.buffer, 2, attributes);
+  context_.allocator.flush(stagingBuffer.allocation);
+  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, surface_.buffer, 2, surface);
+  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, attributes_.buffer, 2, attributes);
   // The normals pass reads the uploaded heights, the vertex shader the attributes.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
@@ -459,7 +480,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &sets_[slot_], 0, nullptr);
     gpu::TerrainComputePush push = heightPush();
     push.firstVertex = frame_.heightFirstRing * n;
     push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
@@ -501,7 +522,7 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frame_.wireframe ? wireframePipeline_ : fillPipeline_);
   const VkPipelineLayout drawLayout = noiseDrawLayout_ ? noiseDrawLayout_ : layout_;
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &set_, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &sets_[slot_], 0, nullptr);
   if (noiseDrawLayout_) {
     const gpu::TerrainComputePush push = heightPush();
     vkCmdPushConstants(cmd, noiseDrawLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);

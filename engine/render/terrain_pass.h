@@ -111,15 +111,18 @@ class TerrainPass {
   TerrainPass& operator=(const TerrainPass&) = delete;
 
   // CPU half of a frame: orientation (transported from the previous frame), ring cut, octave
-  // tables, patch layout, uniforms. Returns what it decided. It rewrites buffers the previous
-  // frame's commands read, and builds on first use what the toggles below need: call it only
-  // after that frame completed.
-  const TerrainFrameInfo& prepare(const TerrainView& view);
-  // Compute half: heights and normals (skipped when nothing that feeds them changed since the
-  // last computed frame), then the patch levels that moved. Call after prepare().
+  // tables, patch layout, uniforms. Returns what it decided. The octave tables and uniforms go
+  // into frame slot `slot`'s host-visible buffers (< vk::kFramesInFlight): call it while no
+  // frame recorded for that slot is executing; a frame of the other slot may be. It builds on
+  // first use what the toggles below need (the full patch textures: after waiting for the
+  // device to be idle).
+  const TerrainFrameInfo& prepare(const TerrainView& view, uint32_t slot = 0);
+  // Compute half of the last prepared frame, with its slot's buffers: heights and normals
+  // (skipped when nothing that feeds them changed since the last computed frame), then the
+  // patch levels that moved. Call after prepare(), submitting in the order of the calls.
   void recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer);
-  // The draw, inside a dynamic-rendering scope with the target's formats: the ground, then the
-  // water sphere over it (planets with an ocean).
+  // The draw of the last prepared frame, inside a dynamic-rendering scope with the target's
+  // formats: the ground, then the water sphere over it (planets with an ocean).
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   // Debug (the viewer): while frozen, prepare() keeps the orientation, rings, octave tables and
@@ -178,6 +181,8 @@ class TerrainPass {
   // cameraZ: the camera's height above the anchor along local z (its x and y are 0, or in the
   // view-projection while the LOD is frozen).
   void writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection, double cameraZ);
+  // tables_ into slot_'s buffers (every frame: the other slot's may hold another LOD's).
+  void writeTables();
   gpu::TerrainComputePush heightPush() const;
   // HeightSource::Cpu: evaluates this frame's vertices on the CPU into the staging buffer and
   // records its copy into surface_ and attributes_.
@@ -200,15 +205,17 @@ class TerrainPass {
   vk::Buffer normals_;
   vk::Buffer attributes_;
   vk::Buffer budgets_;
-  vk::Buffer remainders_;
-  vk::Buffer shifts_;
-  vk::Buffer uniforms_;
-  vk::Buffer cpuStaging_;             // HeightSource::Cpu: surface, then attributes, as the mesh's vertices
-  std::vector<double> ringSpacings_;  // HeightSource::Cpu: per ring and the pole (0: every octave)
+  // Written by the CPU per frame: one host-visible copy per frame slot.
+  vk::Buffer remainders_[vk::kFramesInFlight];
+  vk::Buffer shifts_[vk::kFramesInFlight];
+  vk::Buffer uniforms_[vk::kFramesInFlight];
+  vk::Buffer cpuStaging_[vk::kFramesInFlight];  // HeightSource::Cpu: surface, then attributes, as the mesh's vertices
+  std::vector<double> ringSpacings_;            // HeightSource::Cpu: per ring and the pole (0: every octave)
 
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // each points at its slot's buffers
+  uint32_t slot_ = 0;                               // of the last prepare()
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline heightsPipeline_ = VK_NULL_HANDLE;
   VkPipeline normalsPipeline_ = VK_NULL_HANDLE;

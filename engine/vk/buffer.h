@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include <vulkan/vulkan.h>
 
@@ -10,6 +11,10 @@
 namespace planet::vk {
 
 class Context;
+
+// Frames a renderer may have in flight: its passes keep this many copies (frame slots) of the
+// data the CPU writes per frame, so that one slot is written while the GPU reads the other.
+inline constexpr uint32_t kFramesInFlight = 2;
 
 struct Buffer {
   VkBuffer buffer = VK_NULL_HANDLE;

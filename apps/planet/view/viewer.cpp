@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <deque>
@@ -47,6 +48,11 @@ constexpr size_t kFrameGraphLength = 240;
 constexpr uint32_t kWarmupFrames = 10;  // allocator and RSS figures are compared after these
 
 std::string glfwErrorText;
+
+// Ctrl-C (SIGINT) or SIGTERM ends the viewer as closing its window would: the frame loop
+// finishes, the screenshot is saved and everything is released.
+volatile std::sig_atomic_t stopRequested = 0;
+void onStopSignal(int) { stopRequested = 1; }
 
 void onGlfwError(int code, const char* description) {
   glfwErrorText = fmt::format("{} (GLFW error {})", description, code);
@@ -115,6 +121,7 @@ class Viewer {
   std::unique_ptr<FlightCamera> camera_;
   ViewerUi ui_;
   bool swapchainStale_ = false;
+  uint32_t swapchainRecreations_ = 0;
   int lastSubmittedSlot_ = -1;
 
   // Input state between frames.
@@ -136,6 +143,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
   settings_.fovDeg = options.fovDeg;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));
+  settings_.mesh = qualityPreset(settings_.quality).mesh;
   if (!options.quality && context_->info.isCpu())
     logInfo("{} is a CPU Vulkan device: starting at quality '{}' ({}); raise it in the panel", context_->info.name,
             viewQualityName(settings_.quality), describeQuality(settings_.quality));
@@ -295,6 +303,7 @@ void Viewer::recreateSwapchain() {
   destroySwapchainResources();
   createSwapchainResources();  // replaces the old swapchain (or leaves none while minimised)
   swapchainStale_ = false;
+  ++swapchainRecreations_;
   if (!swapchain_.images.empty() && renderer_) {
     const RenderSettings wanted = currentRenderSettings();
     renderer_->resize(wanted.width, wanted.height);
@@ -349,7 +358,9 @@ RenderSettings Viewer::currentRenderSettings() const {
   base.sky.clouds = settings_.clouds;
   base.sky.exposure = settings_.exposure;
   const VkExtent2D window = swapchain_.images.empty() ? VkExtent2D{options_.width, options_.height} : swapchain_.extent;
-  return viewRenderSettings(base, settings_.quality, window.width, window.height);
+  RenderSettings render = viewRenderSettings(base, settings_.quality, window.width, window.height);
+  render.terrain.mesh = settings_.mesh;
+  return render;
 }
 
 void Viewer::buildRenderer() {
@@ -510,17 +521,19 @@ void Viewer::handleRequests(UiRequests& r) {
 }
 
 bool Viewer::drawFrame(uint32_t frameIndex) {
-  FrameSlot& slot = slots_[frameIndex % kFramesInFlight];
-  // The Renderer's per-frame buffers are written by the CPU in prepare(); the frame before
-  // must be done with them. (Everything up to here, input, camera and the UI, overlapped it.)
-  if (lastSubmittedSlot_ >= 0) waitForFrame(slots_[lastSubmittedSlot_]);
+  static_assert(kFramesInFlight <= Renderer::kFramesInFlight, "the Renderer keeps per-frame data for each slot");
+  const uint32_t slotIndex = frameIndex % kFramesInFlight;
+  FrameSlot& slot = slots_[slotIndex];
+  // The Renderer keeps the data the CPU writes in prepare() per slot: only this slot's last
+  // frame must be done with it; the other slot's frame may still execute.
+  const bool reused = slot.submitted;
   waitForFrame(slot);
-  if (lastSubmittedSlot_ >= 0) {
-    passes_ = renderer_->lastTimings();
-    if (!pendingScreenshot_.empty()) {
-      saveScreenshot(pendingScreenshot_);
-      pendingScreenshot_.clear();
-    }
+  if (reused) passes_ = renderer_->lastTimings(slotIndex);  // the HUD shows the slot's last frame
+  if (lastSubmittedSlot_ >= 0 && !pendingScreenshot_.empty()) {
+    // The output image is shared by the slots: read it with no frame in flight.
+    waitIdle();
+    saveScreenshot(pendingScreenshot_);
+    pendingScreenshot_.clear();
   }
 
   uint32_t imageIndex = 0;
@@ -536,7 +549,7 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
 
   const double timeS = settings_.timeS;
   const glm::dvec3 sun = sunFromSubsolar(settings_.sunLatitudeDeg, settings_.sunLongitudeDeg);
-  const Renderer::Prepared prepared = renderer_->prepare(camera_->pose(), sun, timeS);
+  const Renderer::Prepared prepared = renderer_->prepare(camera_->pose(), sun, timeS, slotIndex);
   lastFrame_ = prepared.terrain;
 
   VK_CHECK(vkResetFences(context_->device, 1, &slot.fence));
@@ -544,7 +557,7 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
-  renderer_->record(slot.cmd);
+  renderer_->record(slot.cmd, slotIndex);
   vk::Image& output = renderer_->output();
   // The blit reads what the tonemap wrote.
   vk::transitionImage(slot.cmd, output, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -595,7 +608,7 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
   submit.pSignalSemaphores = &presented_[imageIndex];
   VK_CHECK(vkQueueSubmit(context_->graphicsQueue, 1, &submit, slot.fence));
   slot.submitted = true;
-  lastSubmittedSlot_ = int(frameIndex % kFramesInFlight);
+  lastSubmittedSlot_ = int(slotIndex);
 
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   present.waitSemaphoreCount = 1;
@@ -618,7 +631,9 @@ int Viewer::run() {
   vk::AllocatorStats warm{};
   long warmRss = 0;
   std::vector<double> frameMs;
-  while (!glfwWindowShouldClose(window_)) {
+  std::signal(SIGINT, onStopSignal);
+  std::signal(SIGTERM, onStopSignal);
+  while (!glfwWindowShouldClose(window_) && !stopRequested) {
     glfwPollEvents();
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
@@ -671,6 +686,7 @@ int Viewer::run() {
     frameTimesMs_.push_back(float(dt * 1000.0));
     while (frameTimesMs_.size() > kFrameGraphLength) frameTimesMs_.pop_front();
     HudData hud;
+    settings_.cameraLongitudeDeg = camera_->pose().longitudeDeg;
     hud.device = context_->info.name;
     std::vector<double> recent(frameTimesMs_.begin(), frameTimesMs_.end());
     const double medianMs = recent.empty() ? 0.0 : percentile(recent, 50.0);
@@ -716,6 +732,7 @@ int Viewer::run() {
     fmt::print("frames: {} on {}, median {:.1f} ms ({:.1f} fps), p95 {:.1f} ms, max {:.1f} ms\n", frame,
                context_->info.name, percentile(frameMs, 50.0), 1000.0 / percentile(frameMs, 50.0),
                percentile(frameMs, 95.0), percentile(frameMs, 100.0));
+  fmt::print("swapchain recreated {} times (resize, minimise, out of date)\n", swapchainRecreations_);
   if (frame >= kWarmupFrames)
     fmt::print(
         "memory after frame {}: {} allocations, {} bytes used, {} blocks, RSS {} KiB; after frame {}: {} allocations, "

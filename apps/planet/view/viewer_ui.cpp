@@ -75,8 +75,8 @@ bool editLayer(NoiseLayer& layer) {
 }  // namespace
 
 const char* viewerKeyHelp() {
-  return "Mouse: right button held looks around (free flight) or turns the view (orbit); left drag\n"
-         "  in orbit moves over the ground; wheel zooms (orbit) or changes speed (free flight)\n"
+  return "Mouse: right button held looks around (free flight) or turns and tilts the view (orbit);\n"
+         "  left drag in orbit moves over the ground; the wheel multiplies the height by 0.85 a step\n"
          "W/S forward/back, A/D left/right, E/Space up, Q/C down; Shift 4x faster, Alt 4x slower\n"
          "Tab switches orbit / free flight; G flies to the go-to point of the panel\n"
          "F1 this help, F2 hides the panel, F12 or P saves a screenshot (without the panel), Esc quits";
@@ -136,9 +136,16 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     ImGui::SliderInt("quality", &quality, 0, kViewQualityCount - 1, names[quality], ImGuiSliderFlags_AlwaysClamp);
     if (ImGui::IsItemDeactivatedAfterEdit() && quality != int(s.quality)) {
       s.quality = ViewQuality(quality);
+      s.mesh = qualityPreset(s.quality).mesh;
       r.rebuild = true;
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", describeQuality(ViewQuality(quality)).c_str());
+    // The spherical clipmap (Clasen & Hege): levels halve theta, rings per level, vertices per ring.
+    int levels = int(s.mesh.levels), rings = int(s.mesh.ringsPerLevel), numPhi = int(s.mesh.numPhi);
+    if (editInt("mesh levels", levels, 8, int(kClipmapMaxLevels))) r.rebuild = true;
+    if (editInt("rings per level", rings, 2, 64)) r.rebuild = true;
+    if (editInt("vertices per ring", numPhi, 16, 1024)) r.rebuild = true;
+    s.mesh = ClipmapParams{uint32_t(levels), uint32_t(rings), uint32_t(numPhi)};
     r.rebuild |= editDouble("field of view", s.fovDeg, 10.0, 120.0, "%.0f deg");
     r.terrainToggles |= ImGui::Checkbox("water", &s.water);
     r.skyChanged |= ImGui::Checkbox("clouds", &s.clouds);
@@ -156,6 +163,11 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.skyChanged |= ImGui::IsItemEdited();
   }
   if (ImGui::CollapsingHeader("Sun and time", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // Local solar time at the camera: noon where the sun stands over the camera's meridian.
+    double hours = 12.0 + std::remainder(s.cameraLongitudeDeg - s.sunLongitudeDeg, 360.0) / 15.0;
+    float h = float(hours);
+    ImGui::SliderFloat("time of day", &h, 0.0f, 24.0f, "%.2f h", ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemEdited()) s.sunLongitudeDeg = std::remainder(s.cameraLongitudeDeg - (double(h) - 12.0) * 15.0, 360.0);
     editDouble("sun latitude", s.sunLatitudeDeg, -90.0, 90.0, "%.1f deg");
     editDouble("sun longitude", s.sunLongitudeDeg, -180.0, 180.0, "%.1f deg");
     ImGui::Checkbox("sun moves", &s.sunMoves);

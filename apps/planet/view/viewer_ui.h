@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "planet/clipmap_mesh.h"
 #include "planet/planet_description.h"
 #include "render/flight_camera.h"
 #include "render/renderer.h"
@@ -20,6 +21,7 @@ namespace planet::view {
 struct ViewerSettings {
   PlanetDescription planet;  // the noise stack, sea level, colours, atmosphere (rebuild on change)
   ViewQuality quality = ViewQuality::High;
+  ClipmapParams mesh;  // levels, rings per level, vertices per ring (the quality's until edited)
   double fovDeg = 60.0;
   bool water = true;
   bool clouds = true;
@@ -33,6 +35,7 @@ struct ViewerSettings {
   bool sunMoves = false;  // one day per dayLengthS
   double dayLengthS = 600.0;
   double timeS = 0.0;  // animation phase (clouds, waves)
+  double cameraLongitudeDeg = 0.0;  // read by the panel: local solar time is relative to it
   bool animate = true;
 };
 
