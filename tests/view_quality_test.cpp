@@ -70,5 +70,18 @@ TEST(ViewQuality, WireframeAndTheUsersPatchToggleTurnPatchesOff) {
   EXPECT_TRUE(viewRenderSettings(RenderSettings{}, ViewQuality::Medium, 100, 100).terrain.patches);
 }
 
+TEST(ViewQuality, LowerLevelsDrawFewerStarsAndHighDrawsThePresetsAll) {
+  const PlanetDescription earth = resolvePreset("earth");
+  EXPECT_EQ(viewPlanet(earth, ViewQuality::High).stars.faintestMagnitude, earth.stars.faintestMagnitude);
+  EXPECT_EQ(viewPlanet(earth, ViewQuality::Ultra).stars.faintestMagnitude, earth.stars.faintestMagnitude);
+  EXPECT_LT(viewPlanet(earth, ViewQuality::Low).stars.faintestMagnitude, earth.stars.faintestMagnitude);
+  EXPECT_LE(viewPlanet(earth, ViewQuality::Low).stars.faintestMagnitude,
+            viewPlanet(earth, ViewQuality::Medium).stars.faintestMagnitude);
+  // Nothing else of the planet changes.
+  PlanetDescription low = viewPlanet(earth, ViewQuality::Low);
+  low.stars.faintestMagnitude = earth.stars.faintestMagnitude;
+  EXPECT_EQ(descriptionHash(low), descriptionHash(earth));
+}
+
 }  // namespace
 }  // namespace planet

@@ -34,6 +34,7 @@ QualityPreset qualityPreset(ViewQuality quality) {
       p.atmosphereSamples = 6;
       p.patches = false;
       p.patchResolution = 256;
+      p.faintestStarMagnitude = 6.0;
       break;
     case ViewQuality::Medium:
       p.renderScale = 0.75;
@@ -42,6 +43,7 @@ QualityPreset qualityPreset(ViewQuality quality) {
       p.atmosphereSamples = 10;
       p.patches = true;
       p.patchResolution = 256;
+      p.faintestStarMagnitude = 6.5;
       break;
     case ViewQuality::High:  // what planet render draws
       p.renderScale = 1.0;
@@ -67,9 +69,11 @@ ViewQuality defaultViewQuality(bool cpuDevice) { return cpuDevice ? ViewQuality:
 
 std::string describeQuality(ViewQuality quality) {
   const QualityPreset p = qualityPreset(quality);
-  return fmt::format("render scale {}, mesh {} levels x {} rings x {} vertices, {} atmosphere samples, {}",
-                     p.renderScale, p.mesh.levels, p.mesh.ringsPerLevel, p.mesh.numPhi, p.atmosphereSamples,
-                     p.patches ? fmt::format("patch textures {}^2", p.patchResolution) : "no patch textures");
+  return fmt::format(
+      "render scale {}, mesh {} levels x {} rings x {} vertices, {} atmosphere samples, {}{}", p.renderScale,
+      p.mesh.levels, p.mesh.ringsPerLevel, p.mesh.numPhi, p.atmosphereSamples,
+      p.patches ? fmt::format("patch textures {}^2", p.patchResolution) : "no patch textures",
+      p.faintestStarMagnitude < 9.0 ? fmt::format(", stars to magnitude {}", p.faintestStarMagnitude) : "");
 }
 
 RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality quality, uint32_t windowWidth,
@@ -87,6 +91,12 @@ RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality qualit
   s.terrain.patchSettings.resolution = p.patchResolution;
   s.sky.viewSamples = p.atmosphereSamples;
   return s;
+}
+
+PlanetDescription viewPlanet(const PlanetDescription& planet, ViewQuality quality) {
+  PlanetDescription drawn = planet;
+  drawn.stars.faintestMagnitude = std::min(drawn.stars.faintestMagnitude, qualityPreset(quality).faintestStarMagnitude);
+  return drawn;
 }
 
 }  // namespace planet

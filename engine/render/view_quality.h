@@ -21,6 +21,9 @@ struct QualityPreset {
   uint32_t atmosphereSamples = 16;  // samples along each pixel's ray in the compose pass
   bool patches = true;              // per-pixel detail from the patch textures
   uint32_t patchResolution = 512;   // texels per side of each patch level
+  // Stars down to this apparent magnitude at most (the preset may stop brighter): lavapipe
+  // rasterises point sprites slowly, and each magnitude fainter is 10^0.5 ≈ 3.2× more stars.
+  double faintestStarMagnitude = 9.0;
 };
 
 const char* viewQualityName(ViewQuality quality);
@@ -36,5 +39,8 @@ std::string describeQuality(ViewQuality quality);
 // `base` (its field of view, toggles and exposure are kept). The render size is at least 16×16.
 RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality quality, uint32_t windowWidth,
                                   uint32_t windowHeight);
+// The planet as drawn at `quality`: `planet` with its stars limited to the level's faintest
+// magnitude (the viewer saves the unlimited description).
+PlanetDescription viewPlanet(const PlanetDescription& planet, ViewQuality quality);
 
 }  // namespace planet

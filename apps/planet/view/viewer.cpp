@@ -367,7 +367,8 @@ void Viewer::buildRenderer() {
   waitIdle();
   renderer_.reset();  // free its memory before the new one takes its own
   const auto start = std::chrono::steady_clock::now();
-  renderer_ = std::make_unique<Renderer>(*context_, settings_.planet, currentRenderSettings());
+  renderer_ =
+      std::make_unique<Renderer>(*context_, viewPlanet(settings_.planet, settings_.quality), currentRenderSettings());
   applyTerrainToggles();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   logInfo("renderer for {} at {}x{} ({} quality) built in {:.2f} s", settings_.planet.name, renderer_->settings().width,
