@@ -120,6 +120,7 @@ class Viewer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<FlightCamera> camera_;
   ViewerUi ui_;
+  ViewerSettings built_;  // what the current renderer was built from (planet, quality, mesh, view)
   bool swapchainStale_ = false;
   uint32_t swapchainRecreations_ = 0;
   int lastSubmittedSlot_ = -1;
@@ -370,6 +371,7 @@ void Viewer::buildRenderer() {
   renderer_ =
       std::make_unique<Renderer>(*context_, viewPlanet(settings_.planet, settings_.quality), currentRenderSettings());
   applyTerrainToggles();
+  built_ = settings_;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   logInfo("renderer for {} at {}x{} ({} quality) built in {:.2f} s", settings_.planet.name, renderer_->settings().width,
           renderer_->settings().height, viewQualityName(settings_.quality), seconds);
@@ -503,11 +505,17 @@ void Viewer::handleRequests(UiRequests& r) {
     try {
       buildRenderer();
     } catch (const Error& e) {
-      // A value the renderer refuses (the panel's ranges are wider than some combinations
-      // allow): say so and keep flying the previous planet.
+      // A combination the renderer refuses (the panel's ranges are wider than some
+      // combinations allow, e.g. clouds above the top of the air): say so, go back to the
+      // settings that last built, and keep flying (a failure there too ends the viewer).
       status_ = fmt::format("not applied: {}", e.what());
       logWarning("{}", status_);
-      if (!renderer_) throw;
+      settings_.planet = built_.planet;
+      settings_.quality = built_.quality;
+      settings_.mesh = built_.mesh;
+      settings_.fovDeg = built_.fovDeg;
+      settings_.patches = built_.patches;
+      buildRenderer();
     }
   } else {
     if (r.skyChanged) {
