@@ -66,9 +66,11 @@ bool editLayer(NoiseLayer& layer) {
     done = true;
   }
   done |= editDouble("amplitude (m)", layer.amplitudeM, -10000.0, 10000.0, "%.0f");
+  // Shown as a wavelength; the frequency is written only when the slider moved (1 / (1 / f)
+  // need not give f back, and the planet must not change by looking at it).
   double wavelength = 1.0 / layer.frequency;
   if (editDouble("wavelength (m)", wavelength, 1.0, 1e8, "%.4g", ImGuiSliderFlags_Logarithmic)) done = true;
-  layer.frequency = 1.0 / std::max(wavelength, 1.0);
+  if (ImGui::IsItemEdited()) layer.frequency = 1.0 / std::max(wavelength, 1.0);
   return done;
 }
 
@@ -167,7 +169,8 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     double hours = 12.0 + std::remainder(s.cameraLongitudeDeg - s.sunLongitudeDeg, 360.0) / 15.0;
     float h = float(hours);
     ImGui::SliderFloat("time of day", &h, 0.0f, 24.0f, "%.2f h", ImGuiSliderFlags_AlwaysClamp);
-    if (ImGui::IsItemEdited()) s.sunLongitudeDeg = std::remainder(s.cameraLongitudeDeg - (double(h) - 12.0) * 15.0, 360.0);
+    if (ImGui::IsItemEdited())
+      s.sunLongitudeDeg = std::remainder(s.cameraLongitudeDeg - (double(h) - 12.0) * 15.0, 360.0);
     editDouble("sun latitude", s.sunLatitudeDeg, -90.0, 90.0, "%.1f deg");
     editDouble("sun longitude", s.sunLongitudeDeg, -180.0, 180.0, "%.1f deg");
     ImGui::Checkbox("sun moves", &s.sunMoves);
@@ -218,12 +221,16 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.rebuild |= editDouble("top (m)", a.heightM, 1e4, 1e6, "%.0f", ImGuiSliderFlags_Logarithmic);
     double rayleigh = a.rayleighScattering.z * 1e6;
     if (editDouble("Rayleigh blue (1e-6/m)", rayleigh, 0.0, 200.0, "%.1f")) r.rebuild = true;
-    if (rayleigh != a.rayleighScattering.z * 1e6 && a.rayleighScattering.z > 0.0)
-      a.rayleighScattering *= rayleigh * 1e-6 / a.rayleighScattering.z;
+    if (rayleigh != a.rayleighScattering.z * 1e6)  // scaled (keeps the colour); from 0, air's λ^-4 ratios
+      a.rayleighScattering = a.rayleighScattering.z > 0.0
+                                 ? a.rayleighScattering * (rayleigh * 1e-6 / a.rayleighScattering.z)
+                                 : AtmosphereDescription{}.rayleighScattering * (rayleigh * 1e-6 / 33.1e-6);
     r.rebuild |= editDouble("Rayleigh scale height", a.rayleighScaleHeightM, 100.0, 50000.0, "%.0f m");
     double mie = a.mieScattering.x * 1e6;
     if (editDouble("Mie (1e-6/m)", mie, 0.0, 500.0, "%.1f")) r.rebuild = true;
-    if (mie != a.mieScattering.x * 1e6) a.mieScattering = glm::dvec3(mie * 1e-6);
+    if (mie != a.mieScattering.x * 1e6)  // scaled, which keeps the dust's colour; grey from 0
+      a.mieScattering =
+          a.mieScattering.x > 0.0 ? a.mieScattering * (mie * 1e-6 / a.mieScattering.x) : glm::dvec3(mie * 1e-6);
     r.rebuild |= editDouble("Mie scale height", a.mieScaleHeightM, 100.0, 20000.0, "%.0f m");
     r.rebuild |= editDouble("Mie g", a.mieG, 0.0, 0.95, "%.2f");
     CloudDescription& cl = s.planet.clouds;
