@@ -184,7 +184,9 @@ void Viewer::createWindowAndContext() {
     throw Error(fmt::format("cannot open a window: {}; without a display, 'planet render' draws to a PNG",
                             glfwErrorText.empty() ? "GLFW failed to start" : glfwErrorText));
   glfwStarted_ = true;
-  if (!glfwVulkanSupported()) throw Error("cannot open a window: GLFW finds no Vulkan loader");
+  if (!glfwVulkanSupported())
+    throw Error(fmt::format("cannot open a window: GLFW finds no usable Vulkan loader{}",
+                            glfwErrorText.empty() ? "" : " (" + glfwErrorText + ")"));
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   window_ = glfwCreateWindow(int(options_.width), int(options_.height),
                              fmt::format("planet: {}", settings_.planet.name).c_str(), nullptr, nullptr);
