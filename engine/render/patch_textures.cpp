@@ -231,8 +231,7 @@ void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& leve
 }
 
 uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
-  if (slot >= vk::kFramesInFlight)
-    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
+  vk::checkFrameSlot(slot);
   if (layout.resolution != settings_.resolution)
     throw Error(fmt::format("patch layout resolution {} differs from the patch textures' {}", layout.resolution,
                             settings_.resolution));

@@ -102,17 +102,8 @@ void Renderer::setSkySettings(const SkySettings& sky) {
   sky_->setSettings(sky);
 }
 
-namespace {
-
-void checkSlot(uint32_t slot) {
-  if (slot >= Renderer::kFramesInFlight)
-    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, Renderer::kFramesInFlight - 1));
-}
-
-}  // namespace
-
 std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
-  checkSlot(slot);
+  vk::checkFrameSlot(slot);
   return timerCreated_ ? timers_[slot].results(context_) : std::vector<vk::GpuTiming>{};
 }
 
@@ -156,7 +147,7 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS,
                                      uint32_t slot) {
-  checkSlot(slot);
+  vk::checkFrameSlot(slot);
   preparedSlot_ = UINT32_MAX;  // until this prepare() completed
   Prepared prepared;
   prepared.camera = clampToGround(requested, &prepared.cameraRaised);
@@ -192,7 +183,7 @@ Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dve
 }
 
 void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
-  checkSlot(slot);
+  vk::checkFrameSlot(slot);
   if (slot != preparedSlot_)
     throw Error(fmt::format("Renderer::record for frame slot {} without a prepare() for it", slot));
   preparedSlot_ = UINT32_MAX;

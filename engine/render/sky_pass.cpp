@@ -144,8 +144,7 @@ void SkyPass::setSettings(const SkySettings& settings) {
 }
 
 void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot) {
-  if (slot >= vk::kFramesInFlight)
-    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
+  vk::checkFrameSlot(slot);
   slot_ = slot;
   gpu::SkyUniforms& u = uniformData_;
   u = gpu::SkyUniforms{};

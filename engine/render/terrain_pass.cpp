@@ -283,8 +283,7 @@ void TerrainPass::writeTables() {
 }
 
 const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t slot) {
-  if (slot >= vk::kFramesInFlight)
-    throw Error(fmt::format("frame slot {} is outside 0..{}", slot, vk::kFramesInFlight - 1));
+  vk::checkFrameSlot(slot);
   slot_ = slot;
   const double radius = planet_.radiusM;
   buildForToggles();

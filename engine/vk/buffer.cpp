@@ -18,6 +18,11 @@ void checkRange(const Buffer& buffer, VkDeviceSize bytes, VkDeviceSize offset, c
 
 }  // namespace
 
+void checkFrameSlot(uint32_t slot) {
+  if (slot >= kFramesInFlight)
+    throw Error("frame slot " + std::to_string(slot) + " is outside 0.." + std::to_string(kFramesInFlight - 1));
+}
+
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory) {
   if (size == 0) throw Error("cannot create a buffer of 0 bytes");
   Buffer buffer;

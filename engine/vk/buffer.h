@@ -15,6 +15,8 @@ class Context;
 // Frames a renderer may have in flight: its passes keep this many copies (frame slots) of the
 // data the CPU writes per frame, so that one slot is written while the GPU reads the other.
 inline constexpr uint32_t kFramesInFlight = 2;
+// Throws planet::Error naming a slot outside 0 .. kFramesInFlight − 1.
+void checkFrameSlot(uint32_t slot);
 
 struct Buffer {
   VkBuffer buffer = VK_NULL_HANDLE;

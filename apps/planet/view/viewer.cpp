@@ -43,7 +43,7 @@
 namespace planet::view {
 namespace {
 
-constexpr uint32_t kFramesInFlight = 2;
+constexpr uint32_t kFramesInFlight = Renderer::kFramesInFlight;  // one frame slot of the Renderer each
 constexpr size_t kFrameGraphLength = 240;
 constexpr uint32_t kWarmupFrames = 10;  // allocator and RSS figures are compared after these
 
@@ -532,7 +532,6 @@ void Viewer::handleRequests(UiRequests& r) {
 }
 
 bool Viewer::drawFrame(uint32_t frameIndex) {
-  static_assert(kFramesInFlight <= Renderer::kFramesInFlight, "the Renderer keeps per-frame data for each slot");
   const uint32_t slotIndex = frameIndex % kFramesInFlight;
   FrameSlot& slot = slots_[slotIndex];
   // The Renderer keeps the data the CPU writes in prepare() per slot: only this slot's last
