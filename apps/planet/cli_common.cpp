@@ -30,6 +30,11 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, kRenderMaxSize, kRenderMaxSize));
 }
 
+void checkFieldOfView(double degrees) {
+  if (!(degrees > 0.0 && degrees <= kRenderMaxFovDeg))
+    throw UsageError(fmt::format("--fov must be in (0, {}] degrees, got {}", kRenderMaxFovDeg, degrees));
+}
+
 int finishWithValidation(const vk::Context& context, int exitCode) {
   if (context.validation && context.validationMessageCount() > 0) {
     logError("{} Vulkan validation message(s) were reported (see above)", context.validationMessageCount());

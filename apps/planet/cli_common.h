@@ -46,6 +46,9 @@ void printOnePerLine(const Range& values, std::string_view format) {
 // "WxH" in pixels for --size: both in 1..kRenderMaxSize, else UsageError naming the text.
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
 
+// --fov in degrees: in (0, kRenderMaxFovDeg], else UsageError naming the value.
+void checkFieldOfView(double degrees);
+
 // A bad value the user gave (flag or input line): printed as one line, exit code 2.
 class UsageError : public std::runtime_error {
  public:

@@ -67,8 +67,7 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd) {
     throw UsageError(fmt::format("--frames must be in 1..{}, got {}", kBenchMaxFrames, cmd.frames));
   if (cmd.warmup < 0 || cmd.warmup > kBenchMaxWarmup)
     throw UsageError(fmt::format("--warmup must be in 0..{}, got {}", kBenchMaxWarmup, cmd.warmup));
-  if (!(cmd.fovDeg > 0.0 && cmd.fovDeg <= 179.0))
-    throw UsageError(fmt::format("--fov must be in (0, 179] degrees, got {}", cmd.fovDeg));
+  checkFieldOfView(cmd.fovDeg);
   o.frames = uint32_t(cmd.frames);
   o.warmup = uint32_t(cmd.warmup);
   o.fovYDeg = cmd.fovDeg;

@@ -39,8 +39,7 @@ void applySeed(PlanetDescription& planet, uint64_t seed) {
 int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
   RenderSettings settings;
   parseSize(cmd.size, settings.width, settings.height);
-  if (!(cmd.fovDeg > 0.0 && cmd.fovDeg <= 179.0))
-    throw UsageError(fmt::format("--fov must be in (0, 179] degrees, got {}", cmd.fovDeg));
+  checkFieldOfView(cmd.fovDeg);
   settings.fovYDeg = cmd.fovDeg;
   settings.terrain.wireframe = cmd.wireframe;
   settings.terrain.patches = !cmd.noPatches;

@@ -35,8 +35,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd) {
   if (cmd.vsync != "on" && cmd.vsync != "off")
     throw UsageError(fmt::format("--vsync must be 'on' or 'off', got '{}'", cmd.vsync));
   options.vsync = cmd.vsync == "on";
-  if (!(cmd.fovDeg > 0.0 && cmd.fovDeg <= 179.0))
-    throw UsageError(fmt::format("--fov must be in (0, 179] degrees, got {}", cmd.fovDeg));
+  checkFieldOfView(cmd.fovDeg);
   options.fovDeg = cmd.fovDeg;
   if (cmd.frames > kMaxFrames)
     throw UsageError(fmt::format("--frames must be at most {}, got {}", kMaxFrames, cmd.frames));
@@ -48,8 +47,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd) {
   options.device = global.device;
   options.validation = global.validation;
   try {
-    options.preset = cmd.preset;
-    (void)resolvePreset(cmd.preset);  // a bad preset is reported before a window opens
+    options.planet = resolvePreset(cmd.preset);  // a bad preset is reported before a window opens
     if (!cmd.camera.empty()) options.camera = parseCameraPose(cmd.camera);
     if (!cmd.sun.empty()) options.sun = parseSunPose(cmd.sun);
     if (!cmd.quality.empty()) options.quality = parseViewQuality(cmd.quality);

@@ -28,8 +28,8 @@ void validateRenderSettings(const RenderSettings& settings) {
       settings.height > kRenderMaxSize)
     throw Error(fmt::format("image size {}x{} is outside 1x1 .. {}x{}", settings.width, settings.height, kRenderMaxSize,
                             kRenderMaxSize));
-  if (!(settings.fovYDeg > 0.0 && settings.fovYDeg <= 179.0))
-    throw Error(fmt::format("field of view {} degrees is outside (0, 179]", settings.fovYDeg));
+  if (!(settings.fovYDeg > 0.0 && settings.fovYDeg <= kRenderMaxFovDeg))
+    throw Error(fmt::format("field of view {} degrees is outside (0, {}]", settings.fovYDeg, kRenderMaxFovDeg));
 }
 
 Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings)
@@ -73,7 +73,8 @@ void Renderer::release() {
 
 void Renderer::createTargets() {
   const VkExtent2D extent{settings_.width, settings_.height};
-  hdr_ = vk::createImage2D(context_, extent, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
+  hdr_ =
+      vk::createImage2D(context_, extent, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
   color_ = vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
   depth_ = vk::createImage2D(context_, extent, kDepthFormat,
                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
@@ -147,10 +148,18 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS,
                                      uint32_t slot) {
+  bool raised = false;
+  const CameraPose camera = clampToGround(requested, &raised);
+  return prepareClamped(camera, raised, sunPlanet, timeS, slot);
+}
+
+Renderer::Prepared Renderer::prepareClamped(const CameraPose& camera, bool raised, const glm::dvec3& sunPlanet,
+                                            double timeS, uint32_t slot) {
   vk::checkFrameSlot(slot);
   preparedSlot_ = UINT32_MAX;  // until this prepare() completed
   Prepared prepared;
-  prepared.camera = clampToGround(requested, &prepared.cameraRaised);
+  prepared.camera = camera;
+  prepared.cameraRaised = raised;
   TerrainView view;
   view.camera = cameraBasis(prepared.camera, planet_.radiusM);
   view.fovYRad = settings_.fovYDeg * std::numbers::pi / 180.0;
@@ -214,9 +223,9 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   sky_->recordCompose(cmd, timer);
   // The tonemap's fragments read what the compose pass wrote.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -232,10 +241,11 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
 
 RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
   RenderResult result;
-  // The sun is placed from the camera's ground point as rendered (after the eye-height rule).
-  const CameraPose camera = clampToGround(requested);
-  // One frame at a time (the submission is waited for): slot 0 always.
-  const Prepared prepared = prepare(requested, sunDirection(sun, camera), timeS, 0);
+  // The sun is placed from the camera's ground point as rendered (after the eye-height rule,
+  // applied once here). One frame at a time (the submission is waited for): slot 0 always.
+  bool raised = false;
+  const CameraPose camera = clampToGround(requested, &raised);
+  const Prepared prepared = prepareClamped(camera, raised, sunDirection(sun, camera), timeS, 0);
   result.camera = prepared.camera;
   result.cameraRaised = prepared.cameraRaised;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });

@@ -24,7 +24,8 @@ class Context;
 
 namespace planet {
 
-inline constexpr uint32_t kRenderMaxSize = 8192;  // per side
+inline constexpr uint32_t kRenderMaxSize = 8192;   // per side
+inline constexpr double kRenderMaxFovDeg = 179.0;  // vertical field of view, degrees
 // A camera closer to the ground than this is raised to it (a person's eye height).
 inline constexpr double kMinEyeHeightM = 1.7;
 
@@ -108,6 +109,9 @@ class Renderer {
 
  private:
   void release();
+  // prepare() for a camera already through clampToGround (which costs a full-detail CPU height).
+  Prepared prepareClamped(const CameraPose& camera, bool raised, const glm::dvec3& sunPlanet, double timeS,
+                          uint32_t slot);
   void createTargets();
   void destroyTargets();
   std::vector<glm::vec4> readHdrImage();

@@ -140,7 +140,7 @@ class Viewer {
 };
 
 Viewer::Viewer(const ViewOptions& options) : options_(options) {
-  settings_.planet = resolvePreset(options.preset);
+  settings_.planet = options.planet;
   settings_.fovDeg = options.fovDeg;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));

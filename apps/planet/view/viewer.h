@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "planet/planet_description.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/view_quality.h"
@@ -14,7 +15,7 @@
 namespace planet::view {
 
 struct ViewOptions {
-  std::string preset{kDefaultPresetName};
+  PlanetDescription planet;          // resolved by the caller (planet view --preset), before any window opens
   std::optional<CameraPose> camera;  // default: over the Atlantic from 20,000 km
   SunPose sun;                       // seen from the starting camera's ground point
   uint32_t width = 1280, height = 720;
