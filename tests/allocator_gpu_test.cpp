@@ -75,6 +75,32 @@ TEST_F(AllocatorGpu, ImpossibleAllocationIsAClearOutOfMemoryError) {
   EXPECT_EQ(context().allocator.stats().liveAllocations, 0u);
 }
 
+TEST(AllocatorLimit, AllocationsBeyondTheLimitFailAndFreeingMakesRoomAgain) {
+  vk::ContextOptions options;
+  options.deviceMemoryLimit = 8ull << 20;
+  std::unique_ptr<vk::Context> context = createTestContext(options);
+  if (!context) GTEST_SKIP() << "no Vulkan device on this machine";
+  // 8 MiB allows three 2.5 MiB buffers (each dedicated: a 64 MiB block does not fit), not four.
+  const VkDeviceSize size = 5ull << 19;
+  std::vector<vk::Buffer> held;
+  for (int i = 0; i < 3; ++i)
+    held.push_back(vk::createBuffer(*context, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal));
+  try {
+    vk::Buffer extra = vk::createBuffer(*context, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal);
+    vk::destroyBuffer(*context, extra);
+    FAIL() << "a fourth buffer fitted under the limit";
+  } catch (const vk::OutOfMemoryError& e) {
+    EXPECT_NE(std::string(e.what()).find("7.5 MiB already held of the 8.0 MiB limit"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(context->allocator.stats().liveAllocations, 3u) << "the failed request left something behind";
+  vk::destroyBuffer(*context, held.back());
+  held.pop_back();
+  held.push_back(vk::createBuffer(*context, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal));
+  EXPECT_LE(context->allocator.stats().bytesReserved, options.deviceMemoryLimit);
+  for (vk::Buffer& b : held) vk::destroyBuffer(*context, b);
+  EXPECT_EQ(context->validationMessageCount(), 0u);
+}
+
 TEST(AllocatorLeaks, DestroyingTheContextWithALiveAllocationFails) {
   std::unique_ptr<vk::Context> context = createTestContext();
   if (!context) GTEST_SKIP() << "no Vulkan device on this machine";

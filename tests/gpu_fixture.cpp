@@ -6,8 +6,7 @@
 
 namespace planet::test {
 
-std::unique_ptr<vk::Context> createTestContext() {
-  vk::ContextOptions options;
+std::unique_ptr<vk::Context> createTestContext(vk::ContextOptions options) {
   options.validation = true;
   options.synchronizationValidation = true;
   try {

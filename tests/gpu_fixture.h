@@ -11,8 +11,9 @@
 
 namespace planet::test {
 
-// A fresh validated context, or nullptr after GTEST_SKIP when no device exists.
-std::unique_ptr<vk::Context> createTestContext();
+// A fresh context with `options` and validation (with synchronization validation) forced on, or
+// nullptr when no device exists (the caller skips).
+std::unique_ptr<vk::Context> createTestContext(vk::ContextOptions options = {});
 
 class GpuTest : public ::testing::Test {
  protected:

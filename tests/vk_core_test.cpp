@@ -10,6 +10,7 @@
 #include "gpu_fixture.h"
 #include "noise/noise_gpu.h"
 #include "vk/buffer.h"
+#include "vk/commands.h"
 #include "vk/image.h"
 
 namespace planet::test {
@@ -104,6 +105,20 @@ TEST(VkValidation, MessengerCatchesDeliberateMisuse) {
   vkCreateBuffer(context->device, &info, nullptr, &buffer);
   if (buffer) vkDestroyBuffer(context->device, buffer, nullptr);
   EXPECT_GE(context->validationMessageCount(), 1u) << "the validation layer did not report the misuse";
+}
+
+TEST(VkValidation, SynchronizationValidationCatchesAMissingBarrier) {
+  std::unique_ptr<vk::Context> context = createTestContext();
+  if (!context) GTEST_SKIP() << "no Vulkan device on this machine";
+  // Two transfer writes to the same bytes with no barrier between them: a write-after-write
+  // hazard that only synchronization validation reports (the calls are valid one by one).
+  vk::Buffer buffer = vk::createBuffer(*context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal);
+  vk::submitAndWait(*context, [&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, buffer.buffer, 0, 256, 1u);
+    vkCmdFillBuffer(cmd, buffer.buffer, 0, 256, 2u);
+  });
+  vk::destroyBuffer(*context, buffer);
+  EXPECT_GE(context->validationMessageCount(), 1u) << "synchronization validation did not report the hazard";
 }
 
 TEST(VkDeviceChoice, UnknownDeviceNameIsAnErrorListingTheDevices) {

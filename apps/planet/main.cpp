@@ -58,6 +58,15 @@ int main(int argc, char** argv) {
   } catch (const cli::UsageError& e) {
     std::fprintf(stderr, "planet: error: %s\n", e.what());
     return cli::kExitUsage;
+  } catch (const VulkanError& e) {
+    // A lost device cannot be recovered in-process; say what it means rather than only the code.
+    if (e.result() == VK_ERROR_DEVICE_LOST)
+      std::fprintf(stderr,
+                   "planet: error: the Vulkan device was lost (driver reset or crash); nothing was written: %s\n",
+                   e.what());
+    else
+      std::fprintf(stderr, "planet: error: %s\n", e.what());
+    return cli::kExitFailure;
   } catch (const Error& e) {
     std::fprintf(stderr, "planet: error: %s\n", e.what());
     return cli::kExitFailure;

@@ -303,8 +303,15 @@ Allocation Allocator::allocate(const Request& request) {
       return *allocation;
     }
   }
-  throw OutOfMemoryError("out of device memory: cannot allocate " + std::to_string(size) + " bytes (" +
-                         memoryUsageName(request.usage) + ")");
+  const auto mib = [](VkDeviceSize bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1 << 20));
+    return std::string(text);
+  };
+  std::string message = "out of device memory: cannot allocate " + std::to_string(size) + " bytes (" +
+                        memoryUsageName(request.usage) + ") with " + mib(reservedBytes()) + " already held";
+  if (options_.memoryLimit != 0) message += " of the " + mib(options_.memoryLimit) + " limit";
+  throw OutOfMemoryError(message);
 }
 
 std::optional<Allocation> Allocator::allocateFromBlocks(const Request& request, uint32_t type) {
@@ -364,6 +371,7 @@ VkDeviceMemory Allocator::allocateMemory(VkDeviceSize size, uint32_t type, const
   // not an out-of-memory result, so answer it here the way the driver would.
   const uint32_t heap = memoryProperties_.memoryTypes[type].heapIndex;
   if (size > memoryProperties_.memoryHeaps[heap].size) return VK_NULL_HANDLE;
+  if (options_.memoryLimit != 0 && reservedBytes() + size > options_.memoryLimit) return VK_NULL_HANDLE;
 
   VkMemoryAllocateInfo info = {};
   info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
@@ -459,15 +467,20 @@ void Allocator::invalidate(const Allocation& allocation) const { syncRange(alloc
 
 void Allocator::flush(const Allocation& allocation) const { syncRange(allocation, false); }
 
+VkDeviceSize Allocator::reservedBytes() const {
+  VkDeviceSize bytes = 0;
+  for (const auto& block : blocks_)
+    if (block) bytes += block->suballocator.size();
+  for (const auto& [memory, size] : dedicated_) bytes += size;
+  return bytes;
+}
+
 AllocatorStats Allocator::stats() const {
   std::lock_guard lock(mutex_);
   AllocatorStats stats;
-  for (const auto& block : blocks_) {
-    if (!block) continue;
-    ++stats.blocks;
-    stats.bytesReserved += block->suballocator.size();
-  }
-  for (const auto& [memory, size] : dedicated_) stats.bytesReserved += size;
+  for (const auto& block : blocks_)
+    if (block) ++stats.blocks;
+  stats.bytesReserved = reservedBytes();
   stats.dedicatedAllocations = uint32_t(dedicated_.size());
   for (uint32_t type = 0; type < VK_MAX_MEMORY_TYPES; ++type) {
     stats.liveAllocations += liveCount_[type];

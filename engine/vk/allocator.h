@@ -89,6 +89,9 @@ class OutOfMemoryError : public Error {
 struct AllocatorOptions {
   VkDeviceSize blockSize = 64ull << 20;           // size of each shared VkDeviceMemory block
   VkDeviceSize dedicatedThreshold = 32ull << 20;  // larger requests get their own memory
+  // The most VkDeviceMemory (blocks plus dedicated) held at once; 0 = no limit. A request
+  // beyond it is answered like VK_ERROR_OUT_OF_DEVICE_MEMORY from the driver.
+  VkDeviceSize memoryLimit = 0;
 };
 
 struct AllocatorStats {
@@ -153,6 +156,7 @@ class Allocator {
   void releaseBlock(int32_t index);
   void syncRange(const Allocation& allocation, bool invalidateRange) const;
   void checkInitialized() const;
+  VkDeviceSize reservedBytes() const;  // caller holds mutex_
 
   mutable std::mutex mutex_;
   VkDevice device_ = VK_NULL_HANDLE;

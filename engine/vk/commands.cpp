@@ -44,7 +44,7 @@ void submitAndWait(Context& context, const std::function<void(VkCommandBuffer)>&
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
-  VK_CHECK(vkQueueSubmit2(context.graphicsQueue, 1, &submit, fence));
+  VK_CHECK(queueSubmit(context, context.graphicsQueue, submit, fence));
   VkResult wait = vkWaitForFences(context.device, 1, &fence, VK_TRUE, kSubmitTimeoutNs);
   if (wait == VK_TIMEOUT)
     throw VulkanError(VK_ERROR_DEVICE_LOST,

@@ -24,6 +24,19 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
   return VK_FALSE;  // never abort the call: the test that caused it fails on the count
 }
 
+// Messages while vkCreateInstance runs are held back: when it fails (no driver), the one-line
+// error says what the user needs and the loader's lines would only repeat it; when it succeeds,
+// they are reported and counted like every other message.
+VKAPI_ATTR VkBool32 VKAPI_CALL holdCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                            VkDebugUtilsMessageTypeFlagsEXT type,
+                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  auto* context = static_cast<Context*>(user);
+  if (!context->holdInstanceMessages) return debugCallback(severity, type, data, user);
+  context->heldInstanceMessages.emplace_back((severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) != 0,
+                                             data->pMessage ? data->pMessage : "(no message)");
+  return VK_FALSE;
+}
+
 VkDebugUtilsMessengerCreateInfoEXT messengerInfo(Context* context) {
   VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   info.messageSeverity =
@@ -111,7 +124,10 @@ VkInstance createInstance(Context& context, const ContextOptions& options) {
   info.ppEnabledExtensionNames = extensions.data();
 
   // Chained so that messages from vkCreateInstance/vkDestroyInstance are caught too.
+  // (It also serves vkDestroyInstance, so its user data must outlive this function: the context.)
   VkDebugUtilsMessengerCreateInfoEXT messenger = messengerInfo(&context);
+  messenger.pfnUserCallback = holdCallback;
+  context.holdInstanceMessages = true;
   VkValidationFeatureEnableEXT syncValidation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
   features.enabledValidationFeatureCount = 1;
@@ -123,9 +139,15 @@ VkInstance createInstance(Context& context, const ContextOptions& options) {
 
   VkInstance instance = VK_NULL_HANDLE;
   VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  context.holdInstanceMessages = false;
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
     throw Error("no Vulkan 1.3 driver found (install mesa-vulkan-drivers for the CPU driver lavapipe)");
   VK_CHECK(result);
+  for (const auto& [isError, message] : context.heldInstanceMessages) {
+    logError("vulkan validation {}: {}", isError ? "error" : "warning", message);
+    context.countValidationMessage();
+  }
+  context.heldInstanceMessages.clear();
   return instance;
 }
 
@@ -233,12 +255,63 @@ void createDevice(Context& context, const ContextOptions& options) {
 
 }  // namespace
 
+VkDeviceSize parseByteSize(const std::string& text, const std::string& what) {
+  const auto bad = [&] {
+    return Error(what + " expects a size in bytes with an optional K, M or G suffix, got '" + text + "'");
+  };
+  if (text.empty() || !(std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '.')) throw bad();
+  size_t end = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &end);
+  } catch (const std::exception&) {
+    throw bad();
+  }
+  double unit = 1;
+  if (end < text.size()) {
+    switch (text[end]) {
+      case 'K': case 'k': unit = 1024.0; break;
+      case 'M': case 'm': unit = 1024.0 * 1024.0; break;
+      case 'G': case 'g': unit = 1024.0 * 1024.0 * 1024.0; break;
+      default: throw bad();
+    }
+    ++end;
+  }
+  const double bytes = value * unit;
+  // 2^50 bytes (1 PiB) bounds every device this runs on and keeps the conversion exact.
+  if (end != text.size() || !std::isfinite(bytes) || bytes < 1 || bytes > 0x1p50) throw bad();
+  return VkDeviceSize(bytes);
+}
+
 ContextOptions contextOptionsFromEnvironment() {
   ContextOptions options;
   const char* validation = std::getenv("PLANET_VALIDATION");
   options.validation = validation && std::strcmp(validation, "0") != 0 && *validation;
   options.synchronizationValidation = options.validation;
+  if (const char* limit = std::getenv("PLANET_DEVICE_MEMORY_LIMIT"); limit && *limit)
+    options.deviceMemoryLimit = parseByteSize(limit, "PLANET_DEVICE_MEMORY_LIMIT");
+  if (const char* fault = std::getenv("PLANET_FAULT"); fault && *fault) {
+    const std::string text = fault;
+    const std::string prefix = "device-lost@";
+    const std::string count = text.substr(std::min(text.size(), prefix.size()));
+    const bool digits = !count.empty() && count.size() <= 9 &&
+                        std::all_of(count.begin(), count.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (text.compare(0, prefix.size(), prefix) != 0 || !digits || std::stoull(count) == 0)
+      throw Error("PLANET_FAULT must be device-lost@N with N a submission number >= 1, got '" + text + "'");
+    options.deviceLostAtSubmit = std::stoull(count);
+  }
   return options;
+}
+
+VkResult Context::beforeSubmit() {
+  const uint64_t number = ++submissions_;
+  return number == deviceLostAtSubmit_ ? VK_ERROR_DEVICE_LOST : VK_SUCCESS;
+}
+
+VkResult queueSubmit(Context& context, VkQueue queue, const VkSubmitInfo2& submit, VkFence fence) {
+  const VkResult fault = context.beforeSubmit();
+  if (fault != VK_SUCCESS) return fault;
+  return vkQueueSubmit2(queue, 1, &submit, fence);
 }
 
 std::unique_ptr<Context> createContext(const ContextOptions& options) {
@@ -257,7 +330,10 @@ std::unique_ptr<Context> createContext(const ContextOptions& options) {
   context->physicalDevice = chooseDevice(context->instance, wanted);
   describeDevice(*context);
   createDevice(*context, options);
-  context->allocator.init(context->physicalDevice, context->device);
+  AllocatorOptions allocatorOptions;
+  allocatorOptions.memoryLimit = options.deviceMemoryLimit;
+  context->allocator.init(context->physicalDevice, context->device, allocatorOptions);
+  context->deviceLostAtSubmit_ = options.deviceLostAtSubmit;
   logDebug("vulkan device: {} ({})", context->info.name, context->info.driver);
   return context;
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -27,10 +28,24 @@ struct ContextOptions {
   std::vector<const char*> instanceExtensions;
   // Device extensions the caller needs (e.g. VK_KHR_swapchain).
   std::vector<const char*> deviceExtensions;
+  // The most VkDeviceMemory the allocator may hold (0: whatever the device gives). Beyond it
+  // allocations fail exactly as on a device that is out of memory, so a small-memory device and
+  // the out-of-memory paths can be tried on any machine.
+  VkDeviceSize deviceMemoryLimit = 0;
+  // Fault injection for tests: submission number N (1-based, counted over every queue
+  // submission of this context) reports VK_ERROR_DEVICE_LOST instead of running. 0: never.
+  uint64_t deviceLostAtSubmit = 0;
 };
 
-// Options from the environment: PLANET_VALIDATION=1 turns validation (and sync validation) on.
+// Options from the environment: PLANET_VALIDATION=1 turns validation (and sync validation) on;
+// PLANET_DEVICE_MEMORY_LIMIT=SIZE (bytes, or with a K, M or G suffix) sets deviceMemoryLimit;
+// PLANET_FAULT=device-lost@N sets deviceLostAtSubmit. A malformed value is a planet::Error
+// naming it.
 ContextOptions contextOptionsFromEnvironment();
+
+// Parses a byte count such as "268435456", "256M" or "1.5G" (K, M, G are powers of 1024).
+// Throws planet::Error naming `what` and the text.
+VkDeviceSize parseByteSize(const std::string& text, const std::string& what);
 
 struct DeviceInfo {
   std::string name;    // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -65,14 +80,28 @@ class Context {
 
   Allocator allocator;
   bool validation = false;
+  // Validation messages raised inside vkCreateInstance, held until it is known to have worked
+  // (see createInstance in context.cpp); (is error, text).
+  bool holdInstanceMessages = false;
+  std::vector<std::pair<bool, std::string>> heldInstanceMessages;
 
   // Validation warnings and errors seen so far (each is also printed to stderr).
   uint64_t validationMessageCount() const { return validationMessages_.load(); }
   void countValidationMessage() { ++validationMessages_; }
 
+  // Every queue submission goes through this first: VK_SUCCESS, or the injected
+  // VK_ERROR_DEVICE_LOST when this is the submission ContextOptions::deviceLostAtSubmit names.
+  VkResult beforeSubmit();
+
  private:
   std::atomic<uint64_t> validationMessages_{0};
+  std::atomic<uint64_t> submissions_{0};
+  uint64_t deviceLostAtSubmit_ = 0;
+  friend std::unique_ptr<Context> createContext(const ContextOptions& options);
 };
+
+// vkQueueSubmit2 through Context::beforeSubmit; the result as the driver (or the fault) gave it.
+VkResult queueSubmit(Context& context, VkQueue queue, const VkSubmitInfo2& submit, VkFence fence);
 
 // Creates instance, device, queues and allocator. Throws planet::Error with a one-line
 // explanation when no usable device exists or the requested one is not found.
