@@ -1,10 +1,14 @@
 // Camera paths (issue 6, point 5): strict parsing with one-line errors naming the file, line and
 // value; interpolation geometric in height, along the great circle in position, the short way
 // round in heading; the default benchmark path.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <algorithm>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -74,6 +78,104 @@ TEST(CameraPath, ErrorsNameTheFileTheLineAndTheValue) {
     EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
   }
   EXPECT_EQ(parseError(first + "1 0 179 100 0 -90\n"), "");  // 179° apart is still defined
+}
+
+// Hostile camera paths (issue 7): each case parses (to `keys` keys) or is a one-line error, of
+// bounded length, that contains `says`.
+TEST(CameraPath, HostileTextParsesOrGivesOneShortLineNamingTheLineAndValue) {
+  const std::string first = "0 0 0 100 0 -90\n";
+  const std::string second = "1 0 1 100 0 -90\n";
+  std::mt19937 random(9);
+  std::string binary(4096, '\0');
+  for (char& c : binary) c = char(random());
+  std::string manyKeys;
+  for (int i = 0; i < 100000; ++i) manyKeys += std::to_string(i) + " 10 20 " + std::to_string(1 + i) + " 0 -90\n";
+  struct Case {
+    const char* what;
+    std::string text;
+    size_t keys;       // when `says` is empty
+    std::string says;  // part of the error
+  } cases[] = {
+      {"empty", "", 0, "p.txt: a camera path needs at least 2 keys, got 0"},
+      {"comments and blank lines only", "# time lat lon\n\n   \n", 0, "at least 2 keys, got 0"},
+      {"a single key", "# one\n" + first, 0, "p.txt: a camera path needs at least 2 keys, got 1"},
+      {"CRLF", "0 0 0 100 0 -90\r\n1 0 1 100 0 -90\r\n", 2, ""},
+      {"no newline at the end", first + "1 0 1 100 0 -90", 2, ""},
+      {"byte order mark", "\xef\xbb\xbf" + first + second, 2, ""},
+      {"plus signs", "+0 +0 +0 +100 +0 -90\n" + second, 2, ""},
+      {"100,000 keys", manyKeys, 100000, ""},
+      // Found by the fuzzer: fields after the seventh were written past the six values.
+      {"eight fields", first + "1 0 1 100 0 -90 7 8\n", 0, "p.txt:2: expected 6 numbers (time_s lat_deg lon_deg height_m heading_deg pitch_deg), got 8"},
+      {"many fields", first + "1 0 1 100 0 -90 7 8 9 10 11 12 13 14 15 16\n", 0, "got 16"},
+      {"equal times", first + "0 0 1 100 0 -90\n", 0, "p.txt:2: time_s 0 is not after the previous key's 0"},
+      {"decreasing times", "5 0 0 100 0 -90\n" + second, 0, "p.txt:2: time_s 1 is not after the previous key's 5"},
+      {"nan time", "nan 0 0 100 0 -90\n" + second, 0, "p.txt:1: time_s nan is not a finite number"},
+      {"inf latitude", first + "1 inf 0 100 0 -90\n", 0, "p.txt:2: lat_deg inf is not a finite number"},
+      {"-inf heading", first + "1 0 1 100 -inf -90\n", 0, "p.txt:2: heading_deg -inf is not a finite number"},
+      {"huge time", first + "1e300 0 1 100 0 -90\n", 0, "p.txt:2: time_s 1e+300 is outside [-1000000000, 1000000000]"},
+      {"times whose difference overflows", "-1.7e308 0 0 100 0 -90\n1.7e308 0 1 100 0 -90\n", 0,
+       "p.txt:1: time_s -1.7e+308 is outside"},
+      {"beyond double", first + "1 0 1 1e400 0 -90\n", 0, "p.txt:2: '1e400' is out of range for a double"},
+      {"latitude past the pole", first + "1 90.5 0 100 0 -90\n", 0, "p.txt:2: lat_deg 90.5 is outside [-90, 90]"},
+      {"longitude past a turn", first + "1 0 -361 100 0 -90\n", 0, "p.txt:2: lon_deg -361 is outside [-360, 360]"},
+      {"negative height", first + "1 0 1 -5 0 -90\n", 0, "p.txt:2: height_m -5 is outside [0.01, 10000000000]"},
+      {"huge height", first + "1 0 1 1e11 0 -90\n", 0, "p.txt:2: height_m 100000000000 is outside"},
+      {"pitch past straight up", first + "1 0 1 100 0 90.5\n", 0, "p.txt:2: pitch_deg 90.5 is outside [-90, 90]"},
+      {"antipodal keys", first + "1 0 180 100 0 -90\n", 0, "p.txt:2: position 0,180 is (nearly) antipodal"},
+      {"a word", first + "1 0 1 high 0 -90\n", 0, "p.txt:2: 'high' is not a number (expected time_s"},
+      {"commas", "0,0,0,100,0,-90\n" + second, 0, "p.txt:1: '0,0,0,100,0,-90' is not a number"},
+      {"truncated line", first + "1 0 1 10", 0,
+       "p.txt:2: expected 6 numbers (time_s lat_deg lon_deg height_m "
+       "heading_deg pitch_deg), got 4"},
+      {"seven numbers", first + "1 0 1 100 0 -90 3\n", 0, "p.txt:2: expected 6 numbers"},
+      {"binary garbage", binary, 0, "p.txt:"},
+      {"latin-1", first + "1 0 1 100 0 \xb0-90\n", 0, "p.txt:2: '?-90' is not a number"},
+      {"NUL byte", first + std::string("1 0 1 100 0 \0\n", 14), 0, "p.txt:2: '?' is not a number"},
+      {"vertical tab", first + "1 0\v1 100 0 -90\n", 0, "p.txt:2: '0?1' is not a number"},
+      {"very long field", first + "1 0 1 " + std::string(1 << 20, '7') + " 0 -90\n", 0,
+       "p.txt:2: '7777777777777777777777777777777777777777...' is out of range"},
+      {"very long word", first + std::string(1 << 20, 'w') + "\n", 0,
+       "p.txt:2: 'wwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwwww...' is not a number"},
+  };
+  for (const Case& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    std::string message;
+    size_t keys = 0;
+    try {
+      keys = parseCameraPath(c.text, "p.txt").keys.size();
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 1.0) << c.what;
+    if (c.says.empty()) {
+      EXPECT_EQ(message, "") << c.what;
+      EXPECT_EQ(keys, c.keys) << c.what;
+    } else {
+      EXPECT_NE(message.find(c.says), std::string::npos) << c.what << "\n got: " << message.substr(0, 300);
+      EXPECT_EQ(message.find('\n'), std::string::npos) << c.what;
+      EXPECT_EQ(message.find('\0'), std::string::npos) << c.what;
+      EXPECT_LT(message.size(), 200u) << c.what;
+    }
+  }
+}
+
+// The file front door: missing, a directory, empty, over the 4 MiB limit.
+TEST(CameraPath, UnreadableAndOversizedFilesAreOneLineNamingThePath) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("planet_camera_path_files_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "sub.path");
+  const std::string missing = (dir / "missing.path").string();
+  EXPECT_EQ(errorOf([&] { loadCameraPath(missing); }), "cannot read '" + missing + "': No such file or directory");
+  const std::string directory = (dir / "sub.path").string();
+  EXPECT_EQ(errorOf([&] { loadCameraPath(directory); }), "cannot read '" + directory + "': Is a directory");
+  const std::string empty = (dir / "empty.path").string();
+  std::ofstream(empty).close();
+  EXPECT_EQ(errorOf([&] { loadCameraPath(empty); }), empty + ": a camera path needs at least 2 keys, got 0");
+  const std::string big = (dir / "big.path").string();
+  std::ofstream(big) << std::string((size_t(4) << 20) + 1, '#');
+  EXPECT_EQ(errorOf([&] { loadCameraPath(big); }), big + ": larger than 4194304 bytes");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(CameraPath, ValidationOfPathsBuiltInCodeNamesTheKey) {

@@ -1,6 +1,7 @@
 // Planet descriptions: the built-in presets, every class of bad input as one exact line,
 // preset resolution by name and by file, and the description hash.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -381,6 +382,17 @@ TEST(PlanetDescription, BinaryAndNonUtf8InputIsRejected) {
   // Valid multi-byte UTF-8 is accepted, and columns count characters.
   EXPECT_EQ(parsePlanetDescription(edit("\"Test\"", "\"Terre \xc3\xa9\xe2\x82\xac\""), "x.toml").name,
             "Terre \xc3\xa9\xe2\x82\xac");
+  // ... in strings and comments only: elsewhere TOML is ASCII (and toml++ 3.3 misbehaves on it,
+  // found by the fuzzer: tests/fuzz/corpus/preset/toml_unreachable_*).
+  const std::string outside = "x.toml:1: a non-ASCII character outside a string or a comment";
+  EXPECT_EQ(parseError("\xc3\xa9 = 1").substr(0, outside.size()), outside);
+  EXPECT_EQ(parseError("[a.\xc2\xa7]").substr(0, outside.size()), outside);
+  EXPECT_EQ(parseError("name = \xc3\xa9").substr(0, outside.size()), outside);
+  EXPECT_EQ(parseError(edit("\"Test\"", "\"Test\" # Terre \xc3\xa9")).find("non-ASCII"), std::string::npos);
+  EXPECT_EQ(parseError("s = \"\"\"\\\n\xc2\xa7\"\"\"\n").substr(0, 69),
+            "x.toml:2: a non-ASCII character after a backslash in a string: not a ");
+  EXPECT_NE(parseError("name = \"a\\\xc3\xa9\"").find("x.toml:1: a non-ASCII character after a backslash"), std::string::npos);
+  EXPECT_NE(parseError("name = \"\"\"a\\ \xef\xba\xbf\"\"\"").find("x.toml:1: a non-ASCII character after a backslash"), std::string::npos);
   std::mt19937 random(7);
   std::string garbage(4096, '\0');
   for (char& c : garbage) c = char(random());
@@ -440,6 +452,145 @@ TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
             "cannot read 'no_such_planet.toml': No such file or directory");
   EXPECT_EQ(errorOf([&] { loadPlanetDescription(dir.string()); }),
             "cannot read '" + dir.string() + "': Is a directory");
+  std::filesystem::remove_all(dir);
+}
+
+// Hostile preset text (issue 7): one case per kind of bad input. Each is a planet::Error with
+// one line, at most a few hundred bytes, that starts with the source name and says `says`; no
+// input crashes the parser or makes it run for long.
+TEST(PlanetDescription, HostileTextGivesOneShortLineNamingTheProblem) {
+  const std::string base(kMinimal);
+  const std::string planetTable = base.substr(0, base.find("[colors]"));
+  auto repeated = [](std::string_view piece, size_t count) {
+    std::string out;
+    for (size_t i = 0; i < count; ++i) out += piece;
+    return out;
+  };
+  std::mt19937 random(3);
+  std::string binary(2048, '\0');
+  for (char& c : binary) c = char(random());
+  struct Case {
+    const char* what;
+    std::string text;
+    std::string says;
+  } cases[] = {
+      {"empty", "", "x.toml: empty document"},
+      {"blank", "\n \t\r\n", "x.toml: empty document"},
+      {"only comments", "# a preset\n# with nothing in it\n", "x.toml: missing table [planet]"},
+      {"unknown key", edit("has_ocean", "has_oceans"), "x.toml:5: unknown key 'has_oceans' in [planet]"},
+      {"unknown key at top", "colour = 1\n" + base, "x.toml:1: unknown key 'colour' at top level"},
+      {"unknown table", base + "[oceans]\n", "x.toml:16: unknown table [oceans]"},
+      {"unknown dotted key", edit("has_ocean = false", "has_ocean = false\nextra.more = 1"),
+       "x.toml:6: unknown key 'extra' in [planet]"},
+      {"string for a number", edit("1_000_000", "\"1e6\""), "x.toml:4: 'radius_m' must be a number, got string"},
+      {"table for a number", edit("1_000_000", "{ m = 1 }"), "x.toml:4: 'radius_m' must be a number, got table"},
+      {"array for a number", edit("1_000_000", "[1e6]"), "x.toml:4: 'radius_m' must be a number, got array"},
+      {"date for a number", edit("1_000_000", "1979-05-27"), "x.toml:4: 'radius_m' must be a number, got date"},
+      {"number for a string", edit("\"fbm\"", "3"), "x.toml:12: 'type' must be a string, got integer"},
+      {"table for an array", edit("scheme = \"altitude\"", "scheme = \"altitude\"\nsnow = { r = 1 }"),
+       "x.toml:9: 'snow' must be an array of 3 numbers [r, g, b], got table"},
+      {"array for a table", "planet = [1]\n" + base.substr(base.find("[colors]")),
+       "x.toml:1: 'planet' must be a table, got array"},
+      {"float for an integer", edit("octaves = 4", "octaves = 4.5"),
+       "x.toml:13: 'octaves' must be an integer, got float"},
+      {"nan", edit("1_000_000", "nan"), "x.toml:4: radius_m must be a finite number, got nan"},
+      {"inf", edit("amplitude_m = 1000", "amplitude_m = inf"),
+       "x.toml:15: amplitude_m must be a finite number, got inf"},
+      {"-inf", edit("frequency = 1e-6", "frequency = -inf"), "x.toml:14: frequency must be a finite number, got -inf"},
+      {"negative radius", edit("1_000_000", "-6e6"), "x.toml:4: radius_m must be in [1000, 1e8], got -6e6"},
+      {"huge radius", edit("1_000_000", "1e300"), "x.toml:4: radius_m must be in [1000, 1e8], got 1e300"},
+      {"huge height", edit("has_ocean = false", "has_ocean = false\nbase_height_m = 1e12"),
+       "x.toml:6: base_height_m must be in [-1e5, 1e5], got 1e12"},
+      {"negative height scale", edit("has_ocean = false", "has_ocean = false\nheight_scale = -2"),
+       "x.toml:6: height_scale must be in [0, 100], got -2"},
+      {"1000 octaves", edit("octaves = 4", "octaves = 1000"), "x.toml:13: octaves must be in [1, 32], got 1000"},
+      {"negative octaves", edit("octaves = 4", "octaves = -4"), "x.toml:13: octaves must be in [1, 32], got -4"},
+      {"int64 octaves", edit("octaves = 4", "octaves = -9223372036854775808"),
+       "x.toml:13: octaves must be in [1, 32], got -9223372036854775808"},
+      {"beyond double", edit("1_000_000", "1e999"), "x.toml:4:"},
+      {"duplicate key", edit("has_ocean = false", "has_ocean = false\nradius_m = 2e6"), "x.toml:6:"},
+      {"duplicate table", base + "[colors]\n", "x.toml:16:"},
+      {"cut mid-table", base.substr(0, base.find("[colors]") + 4), "x.toml:7:"},
+      {"cut mid-string", base.substr(0, base.find("\"Test\"") + 3), "x.toml:3:"},
+      {"cut mid-array", base.substr(0, base.find("\n\n[[layer]]")) + "\nsnow = [1, 0", "x.toml:9:"},
+      {"cut mid-key", base.substr(0, base.find("radius_m") + 3), "x.toml:4:"},
+      {"binary garbage", binary, "x.toml:"},
+      {"png header", "\x89PNG\r\n\x1a\n" + binary, "x.toml:1:1: not UTF-8 text (invalid byte 0x89)"},
+      {"NUL byte", edit("Test", std::string("Te\0st", 5)), "x.toml:3:11: not TOML text (control byte 0x00)"},
+      {"latin-1 in a string", edit("Test", "Caf\xe9"), "x.toml:3:12: not UTF-8 text (invalid byte 0xe9)"},
+      {"latin-1 in a key", edit("radius_m", std::string("r") + char(0xe4) + "dius_m"),
+       "x.toml:4:2: not UTF-8 text (invalid byte 0xe4)"},
+      {"multi-megabyte", base + "# " + std::string(3 << 20, 'x') + "\n",
+       "x.toml: too large (" + std::to_string(base.size() + (3 << 20) + 3) + " bytes, limit 1048576)"},
+      {"deep table header", "[" + repeated("a.", 40000) + "a]\n",
+       "x.toml:1: a key path of 40001 parts nests too deep (at most 8)"},
+      {"deep array of tables", base + "[[" + repeated("layer.", 20000) + "x]]\n",
+       "x.toml:16: a key path of 20001 parts nests too deep"},
+      {"deep dotted key", edit("has_ocean = false", "has_ocean = false\n" + repeated("b . ", 40000) + "b = 1"),
+       "x.toml:6: a key path of 40001 parts nests too deep"},
+      {"deep quoted key", repeated("\"q\".", 20000) + "'q' = 1\n", "x.toml:1: a key path of 20001 parts"},
+      {"deep key in an inline table", "x = { y = 1, " + repeated("z.", 30000) + "z = 2 }\n",
+       "x.toml:1: a key path of 30001 parts"},
+      {"deep arrays", "x = " + repeated("[", 100000), "x.toml:1:"},
+      {"deep inline tables", "x = " + repeated("{ y = ", 100000), "x.toml:1:"},
+      {"huge key", "\"" + std::string(900000, 'k') + "\" = 1\n", "x.toml:1: unknown key 'kkkkkkkkkk"},
+      {"key with a newline escape", "\"a\\nb\" = 1\n" + base, "x.toml:1: unknown key 'a?b' at top level"},
+      {"huge value", edit("\"altitude\"", "\"" + std::string(500000, 'v') + "\""),
+       "x.toml:8: unknown color scheme 'vvvvvvvvvv"},
+      {"huge name", edit("\"Test\"", "\"" + std::string(500000, 'n') + "\""),
+       "x.toml:3: name must be 1 to 64 bytes long, got 500000"},
+  };
+  for (const Case& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string message = parseError(c.text);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_TRUE(startsWith(message, c.says)) << c.what << "\n got: " << message.substr(0, 300);
+    EXPECT_LT(message.size(), 400u) << c.what;
+    EXPECT_LT(seconds, 1.0) << c.what;
+  }
+  // Dots, brackets and braces inside strings and comments are not key paths.
+  const PlanetDescription d = parsePlanetDescription(
+      edit("name = \"Test\"", "name = \"[a.a.a.a.a.a.a.a.a.a]\" # [b.b.b.b.b.b.b.b.b.b]\n# c.c.c.c.c.c.c.c.c.c = 1",
+           edit("scheme = \"altitude\"",
+                "scheme = '''altitude'''\nsnow = [\n  0.5, # x.x.x.x.x.x.x.x.x.x\n  0.5,\n  0.5,\n]")),
+      "x.toml");
+  EXPECT_EQ(d.name, "[a.a.a.a.a.a.a.a.a.a]");
+  EXPECT_EQ(d.colors.snow, glm::vec3(0.5f));
+  // A dotted key of two parts is as good as its table.
+  EXPECT_EQ(
+      parsePlanetDescription("colors.scheme = \"moon\"\n" + edit("[colors]\nscheme = \"altitude\"\n", ""), "x.toml")
+          .colors.scheme,
+      ColorScheme::Moon);
+}
+
+// The file front door: what cannot be read is one line naming the path and the reason.
+TEST(PlanetDescription, UnreadableFilesAreOneLineNamingThePath) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("planet_description_files_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "sub.toml");
+  const std::string missing = (dir / "missing.toml").string();
+  EXPECT_EQ(errorOf([&] { loadPlanetDescription(missing); }),
+            "cannot read '" + missing + "': No such file or directory");
+  const std::string directory = (dir / "sub.toml").string();
+  EXPECT_EQ(errorOf([&] { loadPlanetDescription(directory); }), "cannot read '" + directory + "': Is a directory");
+  const std::string big = (dir / "big.toml").string();
+  {
+    std::FILE* file = std::fopen(big.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    const std::string chunk(1 << 16, '#');
+    for (int i = 0; i < 64; ++i) std::fwrite(chunk.data(), 1, chunk.size(), file);  // 4 MiB
+    std::fclose(file);
+  }
+  // Only the limit and one byte more are read: the size in the message is that, not the file's.
+  EXPECT_EQ(errorOf([&] { loadPlanetDescription(big); }), big + ": too large (1048577 bytes, limit 1048576)");
+  if (::geteuid() != 0) {  // root reads any file
+    const std::string locked = (dir / "locked.toml").string();
+    std::FILE* file = std::fopen(locked.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    std::fclose(file);
+    std::filesystem::permissions(locked, std::filesystem::perms::none);
+    EXPECT_EQ(errorOf([&] { loadPlanetDescription(locked); }), "cannot read '" + locked + "': Permission denied");
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -1,7 +1,14 @@
 #include "cli_common.h"
 
-#include <charconv>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.h"
 #include "core/log.h"
 #include "render/renderer.h"
 
@@ -33,6 +40,94 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
 void checkFieldOfView(double degrees) {
   if (!(degrees > 0.0 && degrees <= kRenderMaxFovDeg))
     throw UsageError(fmt::format("--fov must be in (0, {}] degrees, got {}", kRenderMaxFovDeg, degrees));
+}
+
+namespace {
+
+std::string withoutControlCharacters(std::string text) {
+  for (char& c : text)
+    if (uint8_t(c) < 0x20 || c == 0x7f) c = '?';
+  return text;
+}
+
+// A leading '+' is accepted (std::from_chars does not take one).
+std::string_view withoutPlus(std::string_view text) {
+  return text.size() > 1 && text[0] == '+' ? text.substr(1) : text;
+}
+
+// The check of one numeric option's text. CLI11 2.1 reads '' as 0 (or as "not given" for an
+// optional), an unsigned '-1' as 2^64 - 1, an overflowing value as the type's largest and '010'
+// as octal 8, so that the command's range message would name a value the user never gave; each
+// of those is a UsageError here, quoting the text. Integers are rewritten in plain decimal for
+// CLI11 to convert; the range of the option's own type and the command's checks come after.
+template <typename Integer>
+CLI::Validator integerText(const std::string& name) {
+  return CLI::Validator(
+      [name](std::string& text) {
+        if (std::is_unsigned_v<Integer> && text.starts_with('-'))
+          throw UsageError(fmt::format("{} must not be negative, got {}", name, text));
+        const std::string_view digits = withoutPlus(text);
+        Integer value = 0;
+        auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec == std::errc::result_out_of_range)
+          throw UsageError(fmt::format("{} is out of range, got {}", name, text));
+        if (digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size())
+          throw UsageError(fmt::format("{} expects a whole number, got '{}'", name, text));
+        text = std::to_string(value);
+        return std::string();
+      },
+      "");
+}
+
+CLI::Validator realText(const std::string& name) {
+  return CLI::Validator(
+      [name](std::string& text) {
+        const std::string_view digits = withoutPlus(text);
+        double value = 0.0;
+        auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec == std::errc::result_out_of_range)
+          throw UsageError(fmt::format("{} is out of range, got {}", name, text));
+        if (digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size())
+          throw UsageError(fmt::format("{} expects a number, got '{}'", name, text));
+        return std::string();
+      },
+      "");
+}
+
+}  // namespace
+
+UsageError::UsageError(const std::string& message) : std::runtime_error(withoutControlCharacters(message)) {}
+
+void checkNumbersAsText(CLI::App& command) {
+  for (CLI::Option* option : command.get_options()) {
+    // The type names CLI11 gives int, unsigned and floating-point options (and optionals of them).
+    const std::string type = option->get_type_name();
+    if (type == "INT")
+      option->check(integerText<int64_t>(option->get_name()));
+    else if (type == "UINT")
+      option->check(integerText<uint64_t>(option->get_name()));
+    else if (type == "FLOAT")
+      option->check(realText(option->get_name()));
+  }
+}
+
+void checkOutputFile(const std::string& option, const std::string& path) {
+  if (path.empty()) throw UsageError(option + " must name a file");
+  std::error_code ignored;  // a path that cannot be examined is reported by the parent's check
+  if (path.back() == '/' || std::filesystem::is_directory(path, ignored))
+    throw UsageError(fmt::format("{} must name a file, got '{}'", option, path));
+  // The directory the file (and its temporary twin) goes into must exist and take new files.
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::string directory = parent.empty() ? "." : parent.string();
+  struct stat info {};
+  int error = 0;
+  if (::stat(directory.c_str(), &info) != 0)
+    error = errno;
+  else if (!S_ISDIR(info.st_mode))
+    error = ENOTDIR;
+  else if (::access(directory.c_str(), W_OK | X_OK) != 0)
+    error = errno;
+  if (error != 0) throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(error)));
 }
 
 int finishWithValidation(const vk::Context& context, int exitCode) {

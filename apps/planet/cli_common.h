@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -49,10 +50,23 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
 // --fov in degrees: in (0, kRenderMaxFovDeg], else UsageError naming the value.
 void checkFieldOfView(double degrees);
 
-// A bad value the user gave (flag or input line): printed as one line, exit code 2.
+// Makes every numeric option of `command` (CLI11 types INT, UINT and FLOAT) check its text
+// first, so that '' and '-1' for an unsigned count are one UsageError naming the option and
+// the text; call after the options are added.
+void checkNumbersAsText(CLI::App& command);
+
+// An output FILE named by `option` (--out, --json, --screenshot), checked before any Vulkan
+// work so that a run that could not save its result fails at once: empty, a directory or
+// ending in '/' is a UsageError; a missing or unwritable parent directory a planet::Error
+// ("cannot write 'PATH': reason", as writing it would say).
+void checkOutputFile(const std::string& option, const std::string& path);
+
+// A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
+// characters in the message (a newline inside a quoted argument) become '?', so that it stays
+// one line whatever it quotes.
 class UsageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit UsageError(const std::string& message);
 };
 
 // Registration of each subcommand; the callback runs the command and stores its exit code.

@@ -23,6 +23,7 @@ struct FrameBenchCommand {
   int64_t warmup = 5;
   double fovDeg = 60.0;
   std::string sun;
+  bool sunGiven = false;
   std::string path;
   std::string json;
   std::string csv;
@@ -76,12 +77,15 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd) {
   for (const CLI::Option* option : cmd.fileOptions)
     if (option->count() && option->as<std::string>().empty())
       throw UsageError(option->get_name() + " must name a file");
+  // Outputs are checked before the run, not found unwritable after minutes of it.
+  for (const auto& [name, file] : {std::pair{"--json", &cmd.json}, {"--csv", &cmd.csv}, {"--plot", &cmd.plot}})
+    if (!file->empty()) checkOutputFile(name, *file);
   PlanetDescription planet;
   CameraPath path;
   const std::string pathSource = cmd.path.empty() ? "default" : cmd.path;
   try {
     planet = resolvePreset(cmd.preset);
-    if (!cmd.sun.empty()) o.sun = parseSunPose(cmd.sun);
+    if (cmd.sunGiven) o.sun = parseSunPose(cmd.sun);
     path = cmd.path.empty() ? defaultCameraPath(planet.radiusM) : loadCameraPath(cmd.path);
   } catch (const Error& e) {
     throw UsageError(e.what());
@@ -127,8 +131,9 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
   add(bench.add_option("--warmup", cmd->warmup, "Untimed frames before them, spread over the path the same way")
           ->capture_default_str());
   add(bench.add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str());
-  add(bench.add_option("--sun", cmd->sun,
-                       "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));
+  CLI::Option* sun = bench.add_option("--sun", cmd->sun,
+                                      "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]");
+  add(sun);
   addFile(bench.add_option("--path", cmd->path,
                            "Camera path file: lines 'time_s lat lon height_m heading pitch' (height above the ground), "
                            "# comments [default: a descent from 40,000 km to 2 m, then a traverse at 300 m/s]"));
@@ -146,10 +151,12 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
       if (option->count()) return option->get_name();
     return std::string();
   };
-  bench.callback([&global, &exitCode, cmd, &bench, givenOption] {
+  checkNumbersAsText(bench);
+  bench.callback([&global, &exitCode, cmd, &bench, givenOption, sun] {
     // Without options of its own, or with a benchmark command, there is nothing to do here (main
     // reports a missing command; the command rejects these options itself).
     if (givenOption().empty() || !bench.get_subcommands().empty()) return;
+    cmd->sunGiven = sun->count() > 0;  // --sun '' is an error, not the default sun
     exitCode = runFrameBench(global, *cmd);
   });
   return [givenOption](const std::string& command) {

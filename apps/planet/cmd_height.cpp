@@ -101,6 +101,7 @@ void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
          "--backend", cmd->backend,
          "cpu (double reference) | gpu (compute shader, float offsets from the first sample, rebased in double)")
       ->capture_default_str();
+  checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd] { exitCode = runHeight(global, *cmd); });
 }
 

@@ -75,6 +75,7 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   sub->add_option("--hash", cmd->hash, "Lattice hash: fast (ALU only) | reference (Perlin's table)")
       ->capture_default_str();
   sub->add_option("--backend", cmd->backend, "cpu (reference) | gpu (compute shader)")->capture_default_str();
+  checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runNoise(global, *cmd, *sub); });
 }
 

@@ -36,7 +36,7 @@ void applySeed(PlanetDescription& planet, uint64_t seed) {
     layer.noise.seed = uint32_t((uint64_t(layer.noise.seed) + seed) & 0xffffffffu);
 }
 
-int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
+int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::App& sub) {
   RenderSettings settings;
   parseSize(cmd.size, settings.width, settings.height);
   checkFieldOfView(cmd.fovDeg);
@@ -50,7 +50,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
   settings.sky.exposure = cmd.exposure;
   settings.sky.clouds = !cmd.noClouds;
   settings.terrain.water = !cmd.noWater;
-  if (cmd.out.empty()) throw UsageError("--out must name a file");
+  checkOutputFile("--out", cmd.out);
   if (cmd.seed && *cmd.seed > 0xffffffffull)
     throw UsageError(fmt::format("--seed must be in 0..4294967295, got {}", *cmd.seed));
   PlanetDescription planet;
@@ -58,8 +58,9 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd) {
   SunPose sun;
   try {
     planet = resolvePreset(cmd.preset);
-    if (!cmd.camera.empty()) camera = parseCameraPose(cmd.camera);
-    if (!cmd.sun.empty()) sun = parseSunPose(cmd.sun);
+    // Given but empty is an error too ("--camera ''"), not the default.
+    if (sub.count("--camera")) camera = parseCameraPose(cmd.camera);
+    if (sub.count("--sun")) sun = parseSunPose(cmd.sun);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
@@ -115,7 +116,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_option("--exposure", cmd->exposure, "HDR exposure before the tonemap")->capture_default_str();
   sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
-  sub->callback([&global, &exitCode, cmd] { exitCode = runRender(global, *cmd); });
+  checkNumbersAsText(*sub);
+  sub->callback([&global, &exitCode, cmd, sub] { exitCode = runRender(global, *cmd, *sub); });
 }
 
 }  // namespace planet::cli

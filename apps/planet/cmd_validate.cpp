@@ -20,9 +20,10 @@ struct ValidateCommand {
   std::string json;
 };
 
-int runValidate(const GlobalOptions& global, const ValidateCommand& cmd) {
+int runValidate(const GlobalOptions& global, const ValidateCommand& cmd, const CLI::App& sub) {
   if (cmd.points < 1 || cmd.points > kMaxValidatePoints)
     throw UsageError(fmt::format("--points must be in 1..{}, got {}", kMaxValidatePoints, cmd.points));
+  if (sub.count("--json")) checkOutputFile("--json", cmd.json);
   auto context = openContext(global);
   const bool interactive = ::isatty(STDERR_FILENO);
   noise::ValidationReport report = noise::runValidation(*context, cmd.points, [&](size_t done, size_t total) {
@@ -45,7 +46,8 @@ void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCod
       "exit 0 only within the device's tolerance (lavapipe: bit-identical)");
   sub->add_option("--points", cmd->points, "Points per case")->capture_default_str();
   sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
-  sub->callback([&global, &exitCode, cmd] { exitCode = runValidate(global, *cmd); });
+  checkNumbersAsText(*sub);
+  sub->callback([&global, &exitCode, cmd, sub] { exitCode = runValidate(global, *cmd, *sub); });
 }
 
 }  // namespace planet::cli

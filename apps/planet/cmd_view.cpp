@@ -29,7 +29,7 @@ struct ViewCommand {
 
 constexpr uint32_t kMaxFrames = 100'000'000;
 
-int runView(const GlobalOptions& global, const ViewCommand& cmd) {
+int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App& sub) {
   view::ViewOptions options;
   parseSize(cmd.size, options.width, options.height);
   if (cmd.vsync != "on" && cmd.vsync != "off")
@@ -40,18 +40,19 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd) {
   if (cmd.frames > kMaxFrames)
     throw UsageError(fmt::format("--frames must be at most {}, got {}", kMaxFrames, cmd.frames));
   options.frames = cmd.frames;
-  if (!cmd.screenshot.empty() && cmd.screenshot.back() == '/')
-    throw UsageError(fmt::format("--screenshot must name a file, got '{}'", cmd.screenshot));
+  if (sub.count("--screenshot")) checkOutputFile("--screenshot", cmd.screenshot);
+  if (sub.count("--path") && cmd.path.empty()) throw UsageError("--path must name a file");
   options.screenshot = cmd.screenshot;
   options.hideUi = cmd.hideUi;
   options.device = global.device;
   options.validation = global.validation;
   try {
     options.planet = resolvePreset(cmd.preset);  // a bad preset is reported before a window opens
-    if (!cmd.camera.empty()) options.camera = parseCameraPose(cmd.camera);
-    if (!cmd.sun.empty()) options.sun = parseSunPose(cmd.sun);
-    if (!cmd.quality.empty()) options.quality = parseViewQuality(cmd.quality);
-    if (!cmd.path.empty()) options.path = loadCameraPath(cmd.path);
+    // Given but empty is an error too ("--camera ''"), not the default.
+    if (sub.count("--camera")) options.camera = parseCameraPose(cmd.camera);
+    if (sub.count("--sun")) options.sun = parseSunPose(cmd.sun);
+    if (sub.count("--quality")) options.quality = parseViewQuality(cmd.quality);
+    if (sub.count("--path")) options.path = loadCameraPath(cmd.path);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
@@ -82,7 +83,8 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                   "Play a camera path file (format: planet bench --print-path); with --frames, spread over them");
   sub->add_flag("--hide-ui", cmd->hideUi, "Start with the panel hidden (F2 shows it)");
   sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
-  sub->callback([&global, &exitCode, cmd] { exitCode = runView(global, *cmd); });
+  checkNumbersAsText(*sub);
+  sub->callback([&global, &exitCode, cmd, sub] { exitCode = runView(global, *cmd, *sub); });
 }
 
 }  // namespace planet::cli

@@ -1,5 +1,7 @@
-// Reads points "x y z" (separated by spaces, tabs or commas), one per line. Blank lines and
-// lines starting with '#' are skipped. Anything else is an error naming the line.
+// Reads points "x y z" (separated by spaces, tabs or commas), one per line. '#' starts a
+// comment that runs to the end of the line; blank lines are skipped; CRLF line ends, a leading
+// UTF-8 byte order mark and a last line without a newline are accepted. Anything else is an
+// error naming the line.
 #pragma once
 
 #include <istream>

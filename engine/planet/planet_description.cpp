@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -139,6 +140,161 @@ void checkText(const Context& context, std::string_view text) {
   }
 }
 
+// toml++ builds one table per part of a dotted key or table header ([a.a.a], a.a.a = 1) and
+// walks the tree recursively: tens of thousands of parts (a file of 100 kB, well under the
+// size limit) overflow the stack. No preset key has more than two parts, so key paths are
+// measured before toml++ sees the text. Values nest at most TOML_MAX_NESTED_VALUES deep
+// (toml++ checks that), so the depth of the tree stays bounded.
+constexpr int kMaxKeyParts = 8;
+
+// Walks the text as TOML: strings and comments are skipped, '[' and '{' in values are tracked,
+// and each key path (of a header, a key = value line or an inline table's entry) has its parts
+// counted, and non-ASCII bytes outside strings and comments are refused. Malformed text is left
+// to toml++ to report, which reads the text in the same order: a deep path is found here before
+// toml++ reaches anything that it would reject.
+class KeyDepthCheck {
+ public:
+  KeyDepthCheck(const Context& context, std::string_view text) : context_(context), text_(text) {}
+
+  void run() {
+    std::vector<char> open;  // '[' and '{' of the values around the scan position
+    bool expectKey = true;   // at a line's start outside values, or after '{' or ',' in an inline table
+    while (i_ < text_.size()) {
+      const char c = text_[i_];
+      // TOML allows non-ASCII text only in strings and comments, which are stepped over here.
+      // It is rejected before toml++ sees it: toml++ 3.3 reaches __builtin_unreachable on most
+      // such characters where it skips whitespace (upstream issues #190 and #295).
+      if (uint8_t(c) >= 0x80)
+        context_.fail(line_, "a non-ASCII character outside a string or a comment (TOML keys and values are ASCII)");
+      if (c == '\n') {
+        ++line_;
+        ++i_;
+        expectKey = expectKey || open.empty();
+      } else if (c == ' ' || c == '\t' || c == '\r') {
+        ++i_;
+      } else if (c == '#') {
+        i_ = std::min(text_.find('\n', i_), text_.size());
+      } else if (expectKey) {
+        expectKey = false;
+        if (open.empty() && c == '[') {  // a header: [table] or [[array]]
+          ++i_;
+          if (i_ < text_.size() && text_[i_] == '[') ++i_;
+        } else if (c == '}' && !open.empty() && open.back() == '{') {  // an empty inline table
+          open.pop_back();
+          ++i_;
+          continue;
+        }
+        const int parts = keyPath();
+        if (parts > kMaxKeyParts)
+          context_.fail(line_, fmt::format("a key path of {} parts nests too deep (at most {})", parts, kMaxKeyParts));
+        // Not a key at all (toml++ says what it is): step over it, but not over a line's end.
+        if (parts == 0 && i_ < text_.size() && text_[i_] != '\n') ++i_;
+      } else if (c == '"' || c == '\'') {
+        string(true);
+      } else {
+        ++i_;
+        if (c == '[' || c == '{') open.push_back(c);
+        if ((c == ']' || c == '}') && !open.empty()) open.pop_back();
+        expectKey = (c == '{') || (c == ',' && !open.empty() && open.back() == '{');
+      }
+    }
+  }
+
+ private:
+  // Parts of the dotted key at i_ ("a", "b" and "c" of a . "b" . 'c'); stops after the last.
+  int keyPath() {
+    int parts = 0;
+    while (true) {
+      skipBlanks();
+      if (i_ >= text_.size()) break;
+      if (text_[i_] == '"' || text_[i_] == '\'') {
+        string(false);
+      } else {
+        const size_t start = i_;
+        while (i_ < text_.size() && isBareKeyByte(text_[i_])) ++i_;
+        if (i_ == start) break;
+      }
+      ++parts;
+      skipBlanks();
+      if (i_ >= text_.size() || text_[i_] != '.') break;
+      ++i_;
+    }
+    return parts;
+  }
+
+  // TOML 1.0 bare keys: ASCII letters, digits, '_' and '-'.
+  static bool isBareKeyByte(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  }
+
+  void skipBlanks() {
+    while (i_ < text_.size() && (text_[i_] == ' ' || text_[i_] == '\t')) ++i_;
+  }
+
+  // Skips the string that starts at i_: basic ("...", with escapes) or literal ('...'), and
+  // where `multiLine` allows, their triple-quoted forms (which may hold newlines).
+  void string(bool multiLine) {
+    const char quote = text_[i_];
+    const bool basic = quote == '"';
+    const std::string_view triple = basic ? R"(""")" : "'''";
+    auto step = [&] { return basic && text_[i_] == '\\' && i_ + 1 < text_.size() && text_[i_ + 1] != '\n' ? 2 : 1; };
+    if (multiLine && text_.substr(i_).starts_with(triple)) {
+      i_ += 3;
+      while (i_ < text_.size() && !text_.substr(i_).starts_with(triple)) {
+        if (text_[i_] == '\n') ++line_;
+        if (basic && text_[i_] == '\\') backslash();
+        i_ += step();
+      }
+      i_ = std::min(i_ + 3, text_.size());
+      // Up to two more quotes belong to the content ("""a"""" ends with a quote).
+      for (int k = 0; k < 2 && i_ < text_.size() && text_[i_] == quote; ++k) ++i_;
+      return;
+    }
+    ++i_;
+    while (i_ < text_.size() && text_[i_] != quote && text_[i_] != '\n') {
+      if (basic && text_[i_] == '\\') backslash();
+      i_ += step();
+    }
+    if (i_ < text_.size() && text_[i_] == quote) ++i_;
+  }
+
+  // At a backslash in a basic string. toml++ 3.3 asks whether the characters after it are
+  // whitespace (an escape, or a line-ending backslash whose following whitespace and newlines
+  // are trimmed) and reaches __builtin_unreachable when the answer is sought for a non-ASCII
+  // character (found by the fuzzer). No TOML escape is non-ASCII, so such text is refused here.
+  void backslash() const {
+    size_t k = i_ + 1;
+    while (k < text_.size() && (text_[k] == ' ' || text_[k] == '\t' || text_[k] == '\r')) ++k;
+    uint32_t line = line_;
+    if (k < text_.size() && text_[k] == '\n')
+      while (k < text_.size() && (text_[k] == ' ' || text_[k] == '\t' || text_[k] == '\r' || text_[k] == '\n'))
+        line += text_[k++] == '\n';
+    if (k < text_.size() && uint8_t(text_[k]) >= 0x80)
+      context_.fail(line,
+                    "a non-ASCII character after a backslash in a string: not a TOML escape (write it as \\uXXXX, "
+                    "or start the line with an ASCII character after a line-ending backslash)");
+  }
+
+  const Context& context_;
+  std::string_view text_;
+  size_t i_ = 0;
+  uint32_t line_ = 1;
+};
+
+// User text quoted in a message (a key, a value): at most `limit` bytes, cut at a character's
+// start, with control characters (a quoted key may hold "\n") as '?' to keep the message one line.
+std::string shortened(std::string_view text, size_t limit = 40) {
+  size_t end = text.size();
+  if (end > limit) {
+    end = limit;
+    while (end > 0 && (uint8_t(text[end]) & 0xc0) == 0x80) --end;
+  }
+  std::string out(text.substr(0, end));
+  for (char& c : out)
+    if (uint8_t(c) < 0x20 || c == 0x7f) c = '?';
+  return end < text.size() ? out + "..." : out;
+}
+
 // One TOML table. Keys that are not in `known` are rejected up front, so a typo is reported
 // as itself rather than as the required key it misspells; then values are read with their
 // type and range checked.
@@ -149,7 +305,8 @@ class TableReader {
       : context_(context), table_(table), displayName_(std::move(displayName)) {
     for (auto&& [key, value] : table) {
       if (std::find(known.begin(), known.end(), key.str()) == known.end())
-        context_.fail(key.source().begin.line, fmt::format("unknown key '{}' in {}", key.str(), displayName_));
+        context_.fail(key.source().begin.line,
+                      fmt::format("unknown key '{}' in {}", shortened(key.str()), displayName_));
     }
   }
 
@@ -391,7 +548,9 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
   NoiseLayer layer;
   layer.name = reader.name("name");
   std::string type = reader.requiredString("type");
-  layer.noise.type = parseAt(context, lineOf(*reader.find("type")), [&] { return noise::parseNoiseType(type); });
+  layer.noise.type = parseAt(context, lineOf(*reader.find("type")), [&] {
+    return noise::parseNoiseType(shortened(type));  // the cut is for the message: no type name is that long
+  });
   std::optional<int64_t> octaves = reader.integer("octaves", {noise::kMinOctaves, noise::kMaxOctaves});
   if (!octaves) reader.missing("octaves");
   layer.noise.octaves = int(*octaves);
@@ -401,7 +560,8 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
   layer.noise.gain = reader.number("gain");
   layer.noise.seed = uint32_t(reader.integer("seed", kSeedRange).value_or(0));
   if (auto hash = reader.string("hash"))
-    layer.noise.hash = parseAt(context, lineOf(*reader.find("hash")), [&] { return noise::parseNoiseHash(*hash); });
+    layer.noise.hash =
+        parseAt(context, lineOf(*reader.find("hash")), [&] { return noise::parseNoiseHash(shortened(*hash)); });
 
   std::optional<double> frequency = reader.number("frequency", kFrequencyRange);
   std::optional<double> wavelength = reader.number("wavelength_m", kWavelengthRangeM);
@@ -444,13 +604,9 @@ std::vector<NoiseLayer> readLayers(const Context& context, const toml::table& ro
   return layers;
 }
 
-// toml++ messages are single lines, but a stray control character must not split ours.
-std::string oneLine(std::string_view text) {
-  std::string out(text);
-  for (char& c : out)
-    if (uint8_t(c) < 0x20) c = ' ';
-  return out;
-}
+// toml++ messages are single lines, but a stray control character must not split ours, and
+// a key they quote may be as long as the file.
+std::string oneLine(std::string_view text) { return shortened(text, 200); }
 
 }  // namespace
 
@@ -463,7 +619,7 @@ const char* colorSchemeName(ColorScheme scheme) {
 ColorScheme parseColorScheme(std::string_view name) {
   for (const SchemeName& s : kSchemeNames)
     if (name == s.name) return s.scheme;
-  throw Error(fmt::format("unknown color scheme '{}' (expected earth, altitude, moon or mars)", name));
+  throw Error(fmt::format("unknown color scheme '{}' (expected earth, altitude, moon or mars)", shortened(name)));
 }
 
 PlanetColors defaultColors(ColorScheme scheme) {
@@ -513,6 +669,7 @@ PlanetColors defaultColors(ColorScheme scheme) {
 PlanetDescription parsePlanetDescription(std::string_view text, const std::string& sourceName) {
   const Context context(sourceName);
   checkText(context, text);
+  KeyDepthCheck(context, text).run();
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(sourceName));
@@ -522,8 +679,9 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
   }
   for (auto&& [key, value] : root) {
     if (std::find(std::begin(kTopKeys), std::end(kTopKeys), key.str()) != std::end(kTopKeys)) continue;
-    context.fail(key.source().begin.line, value.is_table() ? fmt::format("unknown table [{}]", key.str())
-                                                           : fmt::format("unknown key '{}' at top level", key.str()));
+    context.fail(key.source().begin.line, value.is_table()
+                                              ? fmt::format("unknown table [{}]", shortened(key.str()))
+                                              : fmt::format("unknown key '{}' at top level", shortened(key.str())));
   }
 
   PlanetDescription d;

@@ -18,6 +18,16 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr size_t kMaxPathBytes = size_t(4) << 20;
 constexpr double kMaxKeyAngleDeg = 179.0;  // beyond, the great circle between two keys is ill-defined
 constexpr const char* kColumns = "time_s lat_deg lon_deg height_m heading_deg pitch_deg";
+constexpr std::string_view kUtf8ByteOrderMark = "\xef\xbb\xbf";
+
+// A field as it can be quoted in a one-line message: printable ASCII (anything else, a NUL
+// or a byte of some other encoding, as '?'), at most 40 characters.
+std::string quotable(std::string_view field) {
+  std::string out;
+  for (char c : field.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
+  if (field.size() > 40) out += "...";
+  return out;
+}
 
 // Angle between the directions of two keys, in degrees (atan2 form: accurate near 0 and 180).
 double keyAngleDeg(const CameraKey& a, const CameraKey& b) {
@@ -37,6 +47,9 @@ std::string keyRangeError(const CameraKey& k) {
                 {"heading_deg", k.headingDeg, -360.0, 360.0},
                 {"pitch_deg", k.pitchDeg, -90.0, 90.0}};
   if (!std::isfinite(k.timeS)) return fmt::format("time_s {} is not a finite number", k.timeS);
+  // Bounded so that the duration and the frame times computed from it stay finite.
+  if (std::abs(k.timeS) > kPathMaxTimeS)
+    return fmt::format("time_s {} is outside [{}, {}]", k.timeS, -kPathMaxTimeS, kPathMaxTimeS);
   for (const Field& f : fields) {
     if (!std::isfinite(f.value)) return fmt::format("{} {} is not a finite number", f.name, f.value);
     if (f.value < f.min || f.value > f.max)
@@ -82,7 +95,8 @@ void validateCameraPath(const CameraPath& path, std::string_view sourceName) {
 
 CameraPath parseCameraPath(std::string_view text, std::string_view sourceName) {
   CameraPath path;
-  size_t lineStart = 0;
+  // Editors on Windows may start a UTF-8 file with a byte order mark: not part of the first key.
+  size_t lineStart = text.starts_with(kUtf8ByteOrderMark) ? kUtf8ByteOrderMark.size() : 0;
   for (size_t lineNumber = 1; lineStart < text.size(); ++lineNumber) {
     size_t lineEnd = text.find('\n', lineStart);
     if (lineEnd == std::string_view::npos) lineEnd = text.size();
@@ -99,14 +113,17 @@ CameraPath parseCameraPath(std::string_view text, std::string_view sourceName) {
       const size_t end = std::min(line.find_first_of(" \t\r", pos), line.size());
       const std::string_view field = line.substr(pos, end - pos);
       pos = end;
-      if (count == 6) {
+      if (count >= 6) {
         ++count;
-        continue;  // counted for the message below
+        continue;  // extra fields are only counted, for the message below
       }
+      // A leading '+' is a number too (std::from_chars does not take one).
+      const std::string_view digits = field.size() > 1 && field[0] == '+' ? field.substr(1) : field;
       double value = 0.0;
-      auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
-      if (ec != std::errc() || ptr != field.data() + field.size())
-        fail(fmt::format("'{}' is not a number (expected {})", field, kColumns));
+      auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      if (ec == std::errc::result_out_of_range) fail(fmt::format("'{}' is out of range for a double", quotable(field)));
+      if (ec != std::errc() || ptr != digits.data() + digits.size())
+        fail(fmt::format("'{}' is not a number (expected {})", quotable(field), kColumns));
       values[count++] = value;
     }
     if (count == 0) continue;

@@ -7,8 +7,9 @@
 //     0         33.8     -90      4e7       0            -90
 //     29        33.8     -90      2         60           -8
 //
-// '#' starts a comment that runs to the end of the line; blank lines are skipped. time_s:
-// seconds, strictly increasing from key to key. lat_deg in [-90, 90], lon_deg and heading_deg
+// '#' starts a comment that runs to the end of the line; blank lines are skipped; CRLF line
+// ends and a leading UTF-8 byte order mark are accepted. time_s: seconds in [-1e9, 1e9],
+// strictly increasing from key to key. lat_deg in [-90, 90], lon_deg and heading_deg
 // in [-360, 360] (heading clockwise from north), pitch_deg in [-90, 90] (above the horizon,
 // -90 looks straight down). height_m: metres above the surface below the camera (the ground,
 // or the sea where it is higher), in [0.01, 1e10]; measuring from the surface lets a path fly
@@ -37,6 +38,7 @@ namespace planet {
 
 inline constexpr double kPathMinHeightM = 0.01;
 inline constexpr double kPathMaxHeightM = 1e10;
+inline constexpr double kPathMaxTimeS = 1e9;  // |time_s|: some 30 years, and a finite duration
 
 struct CameraKey {
   double timeS = 0.0;
