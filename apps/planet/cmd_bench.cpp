@@ -1,6 +1,6 @@
 // planet bench: the frame-time benchmark's options (cmd_bench_frames.cpp) and the benchmark
 // commands; planet bench noise: throughput of the GPU noise against the CPU reference and
-// libnoise.
+// libnoise; planet bench soak (cmd_bench_soak.cpp).
 #include <unistd.h>
 
 #include <cstdio>
@@ -20,6 +20,7 @@ constexpr size_t kMaxBenchPoints = 50'000'000;
 struct BenchNoiseCommand {
   noise::NoiseBenchOptions options;
   std::string json;
+  bool jsonGiven = false;  // --json '' is an error, not "no JSON"
 };
 
 int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
@@ -31,6 +32,7 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
         fmt::format("--octaves must be in {}..{}, got {}", noise::kMinOctaves, noise::kMaxOctaves, o.octaves));
   if (o.repeats < 5 || o.repeats > 1000)
     throw UsageError(fmt::format("--repeats must be in 5..1000, got {}", o.repeats));
+  if (cmd.jsonGiven) checkOutputFile("--json", cmd.json);
   auto context = openContext(global);
   const bool interactive = ::isatty(STDERR_FILENO);
   noise::NoiseBenchReport report = noise::runNoiseBench(*context, o, [&](const std::string& method) {
@@ -44,6 +46,10 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
 }
 
 }  // namespace
+
+// cmd_bench_soak.cpp: `planet bench soak`, which also refuses the frame benchmark's options.
+void addBenchSoakCommand(CLI::App& bench, const GlobalOptions& global, int& exitCode,
+                         const std::function<void(const std::string&)>& rejectFrameOptions);
 
 void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   CLI::App* bench = app.add_subcommand(
@@ -61,11 +67,14 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   sub->add_option("--octaves", cmd->options.octaves, "fBm octaves")->capture_default_str();
   sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")
       ->capture_default_str();
-  sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
-  sub->callback([&global, &exitCode, cmd, rejectFrameOptions] {
+  CLI::Option* json = sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
+  checkNumbersAsText(*sub);
+  sub->callback([&global, &exitCode, cmd, rejectFrameOptions, json] {
     rejectFrameOptions("noise");
+    cmd->jsonGiven = json->count() > 0;
     exitCode = runBenchNoise(global, *cmd);
   });
+  addBenchSoakCommand(*bench, global, exitCode, rejectFrameOptions);
 }
 
 }  // namespace planet::cli

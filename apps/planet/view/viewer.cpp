@@ -29,6 +29,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "core/log.h"
+#include "core/process_memory.h"
 #include "core/statistics.h"
 #include "planet/preset_writer.h"
 #include "planet/terrain_height.h"
@@ -60,15 +61,6 @@ void onGlfwError(int code, const char* description) {
 
 double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
-long residentKiB() {
-  FILE* f = std::fopen("/proc/self/statm", "r");
-  if (!f) return 0;
-  long pages = 0, resident = 0;
-  const int read = std::fscanf(f, "%ld %ld", &pages, &resident);
-  std::fclose(f);
-  return read == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : 0;
-}
-
 // Unit direction toward the sun from its subsolar point.
 glm::dvec3 sunFromSubsolar(double latitudeDeg, double longitudeDeg) {
   return directionFromLatLon(std::clamp(latitudeDeg, -90.0, 90.0), longitudeDeg);
@@ -89,6 +81,8 @@ class Viewer {
   int run();
 
  private:
+  void construct();
+  void release();  // everything the destructor frees; safe on a partly constructed viewer
   void createWindowAndContext();
   void createSwapchainResources();
   void destroySwapchainResources();
@@ -140,6 +134,19 @@ class Viewer {
 };
 
 Viewer::Viewer(const ViewOptions& options) : options_(options) {
+  // A constructor that throws runs no destructor: release what was made so far, so that a
+  // failure here (out of device memory, a lost device) destroys every Vulkan object before the
+  // device, as a normal exit does.
+  try {
+    construct();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void Viewer::construct() {
+  const ViewOptions& options = options_;
   settings_.planet = options.planet;
   settings_.fovDeg = options.fovDeg;
   createWindowAndContext();
@@ -397,7 +404,9 @@ void Viewer::waitIdle() {
   if (context_ && context_->device) VK_CHECK(vkDeviceWaitIdle(context_->device));
 }
 
-Viewer::~Viewer() {
+Viewer::~Viewer() { release(); }
+
+void Viewer::release() {
   if (context_ && context_->device) vkDeviceWaitIdle(context_->device);
   renderer_.reset();
   if (imguiVulkan_) ImGui_ImplVulkan_Shutdown();
@@ -424,8 +433,11 @@ Viewer::~Viewer() {
       logError("{}", e.what());
     }
   }
+  context_.reset();
   if (window_) glfwDestroyWindow(window_);
+  window_ = nullptr;
   if (glfwStarted_) glfwTerminate();
+  glfwStarted_ = false;
 }
 
 FlightInput Viewer::readInput(double dtS) {
@@ -607,16 +619,22 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
   vkCmdEndRenderPass(slot.cmd);
   VK_CHECK(vkEndCommandBuffer(slot.cmd));
 
-  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.waitSemaphoreCount = 1;
-  submit.pWaitSemaphores = &slot.acquired;
-  submit.pWaitDstStageMask = &waitStage;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &slot.cmd;
-  submit.signalSemaphoreCount = 1;
-  submit.pSignalSemaphores = &presented_[imageIndex];
-  VK_CHECK(vkQueueSubmit(context_->graphicsQueue, 1, &submit, slot.fence));
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = slot.acquired;
+  wait.stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = presented_[imageIndex];
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cmdInfo.commandBuffer = slot.cmd;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.waitSemaphoreInfoCount = 1;
+  submit.pWaitSemaphoreInfos = &wait;
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cmdInfo;
+  submit.signalSemaphoreInfoCount = 1;
+  submit.pSignalSemaphoreInfos = &signal;
+  VK_CHECK(vk::queueSubmit(*context_, context_->graphicsQueue, submit, slot.fence));
   slot.submitted = true;
   lastSubmittedSlot_ = int(slotIndex);
 
@@ -639,7 +657,7 @@ int Viewer::run() {
   double previous = glfwGetTime();
   const double startS = previous;
   vk::AllocatorStats warm{};
-  long warmRss = 0;
+  int64_t warmRss = 0;
   std::vector<double> frameMs;
   std::signal(SIGINT, onStopSignal);
   std::signal(SIGTERM, onStopSignal);
