@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -10,45 +11,29 @@
 #include <iterator>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "test_support.h"
+
 namespace {
 
-struct CommandResult {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
+struct CommandResult : planet::test::ShellRun {
+  double seconds = 0.0;  // wall time of the run
 };
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::filesystem::path tempDir() {
-  static std::filesystem::path dir = [] {
-    std::filesystem::path d = std::filesystem::temp_directory_path() / ("planet_cli_test_" + std::to_string(getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+using planet::test::readFileBytes;
+std::string readFile(const std::filesystem::path& path) { return readFileBytes(path); }
+std::filesystem::path tempDir() { return planet::test::processTempDir("cli_test"); }
 
 // Runs `planet ARGS` with `input` on stdin.
 CommandResult planet(const std::string& args, const std::string& input = "") {
-  std::filesystem::path dir = tempDir();
-  std::ofstream(dir / "in") << input;
-  std::string command = std::string(PLANET_EXE) + " " + args + " < " + (dir / "in").string() + " > " +
-                        (dir / "out").string() + " 2> " + (dir / "err").string();
-  int status = std::system(command.c_str());
+  const auto start = std::chrono::steady_clock::now();
   CommandResult run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = readFile(dir / "out");
-  run.err = readFile(dir / "err");
+  static_cast<planet::test::ShellRun&>(run) = planet::test::runShell(PLANET_EXE, args, input, tempDir());
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
 
@@ -88,78 +73,321 @@ TEST(Cli, NoisePrintsOneValuePerPointWithNineDigits) {
   EXPECT_EQ(first.size(), 2u + 9u) << first;
 }
 
+// Files a user might hand to --preset and --path by mistake, made once per run.
+std::filesystem::path hostileFiles() {
+  static std::filesystem::path dir = [] {
+    const std::filesystem::path d = tempDir() / "hostile";
+    std::filesystem::create_directories(d / "dir.toml");
+    auto write = [&](const char* name, const std::string& bytes) {
+      std::ofstream(d / name, std::ios::binary) << bytes;
+    };
+    std::string garbage(4096, '\0');
+    uint32_t state = 12345;
+    for (char& c : garbage) c = char((state = state * 1664525u + 1013904223u) >> 24);
+    write("garbage.bin", garbage);
+    write("latin1.toml", "[planet]\nname = \"Caf\xe9\"\n");
+    write("truncated.toml", "[planet]\nname = \"Ear");
+    write("empty.toml", "");
+    std::string deep = "[";
+    for (int i = 0; i < 40000; ++i) deep += "a.";
+    write("deep.toml", deep + "a]\n");
+    write("huge.toml", std::string(2 << 20, '#'));
+    write("latin1.path", "0 20 -30 2e7 0 -90\n1 21 -29 1e7 10 \xb0-80\n");
+    write("truncated.path", "0 20 -30 2e7 0 -90\n1 21 -29 1e");
+    write("empty.path", "");
+    write("nul.path", std::string("0 20 -30 2e7 0 -90\n1 21 -29 1e7 10 ") + '\0' + "\n");
+    write("hugetime.path", "0 20 -30 2e7 0 -90\n1e300 21 -29 1e7 10 -80\n");
+    return d;
+  }();
+  return dir;
+}
+
+// `text` with every "{h}" replaced by the hostile files' folder and every "{out}" by `out`.
+std::string expand(std::string text, const std::string& out) {
+  for (auto [key, value] : {std::pair<std::string, std::string>{"{h}", hostileFiles().string()}, {"{out}", out}})
+    for (size_t at; (at = text.find(key)) != std::string::npos;) text.replace(at, key.size(), value);
+  return text;
+}
+
+// Every front door of every subcommand (issue 7): empty, NaN/Inf, negative, wrong type and
+// absurd values, unknown flags, and files that are binary, not UTF-8, truncated, empty, too
+// large or a directory. Each gives one line on stderr naming the value, nothing on stdout, a
+// non-zero exit within a second (no Vulkan work before the check), and no file in the folder
+// `{out}` that outputs point into.
 TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
   struct Case {
     std::string args, input, mustContain;
+    int exitCode = 2;
   } cases[] = {
+      // planet noise: flags and the point stream on stdin.
       {"noise --type fbm --octaves 0", "1 2 3\n", "octaves must be in 1..32, got 0"},
-      {"noise --type fbm --octaves 1000", "1 2 3\n", "got 1000"},
-      {"noise --type fbm --octaves many", "1 2 3\n", "many"},
+      {"noise --type fbm --octaves 1000", "1 2 3\n", "octaves must be in 1..32, got 1000"},
+      {"noise --type fbm --octaves -1", "1 2 3\n", "octaves must be in 1..32, got -1"},
+      {"noise --type fbm --octaves ''", "1 2 3\n", "--octaves expects a whole number, got ''"},
+      {"noise --type fbm --octaves many", "1 2 3\n", "--octaves expects a whole number, got 'many'"},
+      {"noise --type fbm --octaves 4.5", "1 2 3\n", "--octaves expects a whole number, got '4.5'"},
+      {"noise --type fbm --octaves 1e3", "1 2 3\n", "--octaves expects a whole number, got '1e3'"},
+      {"noise --type fbm --octaves 99999999999", "1 2 3\n", "--octaves = 99999999999"},
+      {"noise --type fbm --octaves 99999999999999999999", "1 2 3\n",
+       "--octaves is out of range, got 99999999999999999999"},
       {"noise --type perlin", "1 2 3\n", "'perlin'"},
+      {"noise --type ''", "1 2 3\n", "unknown noise type ''"},
       {"noise --type fbm --lacunarity 1", "1 2 3\n", "lacunarity must be in (1, 8], got 1"},
+      {"noise --type fbm --lacunarity -2", "1 2 3\n", "lacunarity must be in (1, 8], got -2"},
+      {"noise --type fbm --lacunarity inf", "1 2 3\n", "lacunarity must be a finite number, got inf"},
       {"noise --type fbm --H nan", "1 2 3\n", "H must be a finite number"},
+      {"noise --type fbm --H ''", "1 2 3\n", "--H expects a number, got ''"},
+      {"noise --type fbm --H 1e400", "1 2 3\n", "--H is out of range, got 1e400"},
+      {"noise --type fbm --offset nan", "1 2 3\n", "offset must be a finite number, got nan"},
+      {"noise --type fbm --offset ''", "1 2 3\n", "--offset expects a number, got ''"},
+      {"noise --type fbm --gain -1", "1 2 3\n", "gain must be in [0, 16], got -1"},
+      {"noise --type fbm --gain abc", "1 2 3\n", "--gain expects a number, got 'abc'"},
       {"noise --type fbm --hash slow", "1 2 3\n", "'slow'"},
+      {"noise --type fbm --hash ''", "1 2 3\n", "unknown noise hash ''"},
       {"noise --type fbm --backend tpu", "1 2 3\n", "'tpu'"},
-      {"noise --type fbm --seed -1", "1 2 3\n", "--seed"},
+      {"noise --type fbm --backend ''", "1 2 3\n", "unknown backend ''"},
+      {"noise --type fbm --seed -1", "1 2 3\n", "--seed must not be negative, got -1"},
+      {"noise --type fbm --seed ''", "1 2 3\n", "--seed expects a whole number, got ''"},
+      {"noise --type fbm --seed 1e12", "1 2 3\n", "--seed expects a whole number, got '1e12'"},
+      {"noise --type fbm --seed 4294967296", "1 2 3\n", "--seed = 4294967296"},
       {"noise --type fbm", "1 2 3\n4 5\n", "line 2: expected 3 numbers"},
       {"noise --type fbm", "1 2 zz\n", "line 1: 'zz' is not a number"},
+      {"noise --type fbm", "1 2 3\nnan 0 0\n", "line 2: 'nan' is not a finite number"},
+      {"noise --type fbm", "0 -inf 0\n", "line 1: '-inf' is not a finite number"},
+      {"noise --type fbm", "1e39 0 0\n", "line 1: '1e39' is out of range for a float"},
+      {"noise --type fbm", "1 2 3 4\n", "line 1: expected 3 numbers 'x y z', got more"},
       {"noise --type fbm", std::string("\x7f\x45\x4c\x46\x02\x01\n", 7), "line 1:"},
+      {"noise --type fbm", std::string("1 2 3\0\n", 7), "line 1: '3?' is not a number"},
+      {"noise --type fbm", "1 2 \xe9\n", "line 1: '?' is not a number"},
+      {"noise --type fbm", "1 2 " + std::string(1 << 20, '9') + "\n", "line 1: '99999999"},
       {"noise", "1 2 3\n", "--type"},
       {"noise --type fbm --frobnicate", "1 2 3\n", "--frobnicate"},
+      // planet validate
       {"validate --points 0", "", "--points must be in 1..10000000, got 0"},
-      {"validate --points 1e12", "", "--points"},
+      {"validate --points 1e12", "", "--points expects a whole number, got '1e12'"},
+      {"validate --points -1", "", "--points must not be negative, got -1"},
+      {"validate --points ''", "", "--points expects a whole number, got ''"},
+      {"validate --points abc", "", "--points expects a whole number, got 'abc'"},
+      {"validate --points 99999999999999999999999", "", "--points is out of range, got 99999999999999999999999"},
+      {"validate --points 10000001 --json {out}/v.json", "", "--points must be in 1..10000000, got 10000001"},
+      {"validate --json ''", "", "--json must name a file"},
+      {"validate --json {out}", "", "--json must name a file, got '"},
+      {"validate --json {out}/", "", "--json must name a file, got '"},
+      {"validate --json {out}/no_such_dir/v.json", "", "cannot write '", 1},
+      {"validate --frobnicate", "", "--frobnicate"},
+      // planet bench noise
       {"bench noise --octaves 33", "", "--octaves must be in 1..32, got 33"},
+      {"bench noise --octaves 1000", "", "--octaves must be in 1..32, got 1000"},
+      {"bench noise --octaves -1", "", "--octaves must be in 1..32, got -1"},
+      {"bench noise --octaves nan", "", "nan"},
       {"bench noise --repeats 2", "", "--repeats must be in 5..1000, got 2"},
-      {"height --at 95,0", "", "latitude must be in [-90, 90] degrees, got 95"},
-      {"height --at 45", "", "--at expects LAT,LON in degrees, got '45'"},
-      {"height --at 1,2 --count 0", "", "--count must be in 1..1000000, got 0"},
-      {"height --at 1,2 --preset nosuch", "", "unknown planet preset 'nosuch'"},
-      {"height --at 1,2 --step-m -1", "", "--step-m must be in [0, 1e8], got -1"},
-      {"height --at 1,2 --backend tpu", "", "unknown backend 'tpu'"},
-      {"render --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
-      {"render --size 100000x100000", "", "--size 100000x100000 is outside"},
-      {"render --size big", "", "--size expects WIDTHxHEIGHT in pixels, got 'big'"},
-      {"render --camera 95,0,100", "", "camera latitude 95 is outside [-90, 90] degrees"},
-      {"render --camera 1,2", "", "expected 3 or 5 numbers"},
-      {"render --camera 1,2,x", "", "'x' is not a finite number"},
-      {"render --sun 10,100", "", "sun elevation 100 is outside [-90, 90] degrees"},
-      {"render --fov 0", "", "--fov must be in (0, 179] degrees, got 0"},
-      {"render --preset nosuch", "", "unknown planet preset 'nosuch'"},
-      {"render --seed 99999999999", "", "--seed must be in 0..4294967295"},
-      {"view --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
-      {"view --size 100000x100000", "", "--size 100000x100000 is outside"},
-      {"view --vsync maybe", "", "--vsync must be 'on' or 'off', got 'maybe'"},
-      {"view --quality best", "", "unknown quality 'best'"},
-      {"view --frames -1", "", "--frames"},
-      {"view --frames 1e12", "", "--frames"},
-      {"view --fov nan", "", "--fov"},
-      {"view --camera 1,2,nan", "", "'nan' is not a finite number"},
-      {"view --preset nosuch", "", "unknown planet preset 'nosuch'"},
-      {"view --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
-      {"view --screenshot /tmp/", "", "--screenshot must name a file, got '/tmp/'"},
-      {"frobnicate", "", "frobnicate"},
-      {"", "", "a command is required"},
+      {"bench noise --repeats -1", "", "--repeats must be in 5..1000, got -1"},
+      {"bench noise --repeats 1e12", "", "1e12"},
+      {"bench noise --points 0 --json {out}/b.json", "", "--points must be in 1..50000000, got 0"},
+      {"bench noise --points 1e12", "", "1e12"},
+      {"bench noise --points abc", "", "abc"},
+      {"bench noise --frobnicate", "", "--frobnicate"},
+      {"bench noise --points -1", "", "--points must not be negative, got -1"},
+      {"bench noise --points 99999999999999999999", "", "--points is out of range, got 99999999999999999999"},
+      {"bench noise --octaves ''", "", "--octaves expects a whole number, got ''"},
+      {"bench noise --json ''", "", "--json must name a file"},
+      {"bench noise --json {out}", "", "--json must name a file, got '"},
+      // planet bench (the frame benchmark)
       {"bench", "", "a command is required"},
       {"bench frobnicate", "", "frobnicate"},
       {"bench --frames 0", "", "--frames must be in 1..100000, got 0"},
       {"bench --frames -5", "", "--frames must be in 1..100000, got -5"},
+      {"bench --frames 1e12", "", "1e12"},
+      {"bench --frames abc", "", "abc"},
       {"bench --warmup -1", "", "--warmup must be in 0..10000, got -1"},
+      {"bench --warmup 1e12", "", "1e12"},
       {"bench --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"bench --size 100000x100000", "", "--size 100000x100000 is outside 1x1 .. 8192x8192"},
+      {"bench --size ''", "", "--size expects WIDTHxHEIGHT in pixels, got ''"},
       {"bench --size wide", "", "--size expects WIDTHxHEIGHT in pixels, got 'wide'"},
       {"bench --fov 180", "", "--fov must be in (0, 179] degrees, got 180"},
-      {"bench --preset nosuch", "", "unknown planet preset 'nosuch'"},
-      {"bench --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
-      {"bench --json ''", "", "--json must name a file"},
+      {"bench --fov nan", "", "--fov must be in (0, 179] degrees, got nan"},
+      {"bench --fov -1", "", "--fov must be in (0, 179] degrees, got -1"},
       {"bench --sun 0,95", "", "sun elevation 95 is outside [-90, 90] degrees"},
+      {"bench --sun nan,nan", "", "'nan' is not a finite number"},
+      {"bench --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"bench --preset {h}/garbage.bin", "", "garbage.bin:1:1: not"},
+      {"bench --preset {h}/latin1.toml", "", "latin1.toml:2:12: not UTF-8 text (invalid byte 0xe9)"},
+      {"bench --preset {h}/truncated.toml", "", "truncated.toml:2:"},
+      {"bench --preset {h}/empty.toml", "", "empty.toml: empty document"},
+      {"bench --preset {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"bench --preset {h}/deep.toml", "", "deep.toml:1: a key path of 40001 parts nests too deep"},
+      {"bench --preset {h}/huge.toml", "", "huge.toml: too large"},
+      {"bench --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
+      {"bench --path ''", "", "--path must name a file"},
+      {"bench --path {h}/garbage.bin", "", "garbage.bin:1: '"},
+      {"bench --path {h}/latin1.path", "", "latin1.path:2: '?-80' is not a number"},
+      {"bench --path {h}/nul.path", "", "nul.path:2: '?' is not a number"},
+      {"bench --path {h}/truncated.path", "", "truncated.path:2: '1e' is not a number"},
+      {"bench --path {h}/empty.path", "", "empty.path: a camera path needs at least 2 keys, got 0"},
+      {"bench --path {h}/hugetime.path", "", "hugetime.path:2: time_s 1e+300 is outside"},
+      {"bench --path {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"bench --json ''", "", "--json must name a file"},
+      {"bench --csv ''", "", "--csv must name a file"},
+      {"bench --plot ''", "", "--plot must name a file"},
+      {"bench --frames 0 --json {out}/f.json --csv {out}/f.csv --plot {out}/f.png", "", "--frames"},
       {"bench noise --frames 3", "", "--frames belongs to the frame benchmark"},
+      {"bench --warmup ''", "", "--warmup expects a whole number, got ''"},
+      {"bench --sun ''", "", "''"},
+      {"bench --frames ''", "", "--frames expects a whole number, got ''"},
+      {"bench --fov ''", "", "--fov expects a number, got ''"},
+      {"bench --frames 99999999999999999999", "", "--frames is out of range, got 99999999999999999999"},
+      {"bench --json {out}", "", "--json must name a file, got '"},
+      {"bench --csv {out}", "", "--csv must name a file, got '"},
+      {"bench --plot {out}/", "", "--plot must name a file, got '"},
+      // planet height
+      {"height --at 95,0", "", "latitude must be in [-90, 90] degrees, got 95"},
+      {"height --at 45", "", "--at expects LAT,LON in degrees, got '45'"},
+      {"height --at ''", "", "--at expects LAT,LON in degrees, got ''"},
+      {"height --at nan,0", "", "--at expects LAT,LON in degrees, got 'nan,0'"},
+      {"height --at 1,inf", "", "--at expects LAT,LON in degrees, got '1,inf'"},
+      {"height --at 1,2 --count 0", "", "--count must be in 1..1000000, got 0"},
+      {"height --at 1,2 --count 1000001", "", "--count must be in 1..1000000, got 1000001"},
+      {"height --at 1,2 --count 1e12", "", "--count expects a whole number, got '1e12'"},
+      {"height --at 1,2 --count -1", "", "--count must not be negative, got -1"},
+      {"height --at 1,2 --count ''", "", "--count expects a whole number, got ''"},
+      {"height --at 1,2 --count 99999999999999999999", "", "--count is out of range, got 99999999999999999999"},
+      {"height --at 1,2 --step-m -1", "", "--step-m must be in [0, 1e8], got -1"},
+      {"height --at 1,2 --step-m inf", "", "--step-m must be in [0, 1e8], got inf"},
+      {"height --at 1,2 --step-m ''", "", "--step-m expects a number, got ''"},
+      {"height --at 1,2 --step-m 1e400", "", "--step-m is out of range, got 1e400"},
+      {"height --at 1,2 --bearing nan", "", "--bearing must be finite, got nan"},
+      {"height --at 1,2 --bearing ''", "", "--bearing expects a number, got ''"},
+      {"height --at 1,2 --bearing north", "", "--bearing expects a number, got 'north'"},
+      {"height --at 1,2 --backend tpu", "", "unknown backend 'tpu'"},
+      {"height --at 1,2 --backend ''", "", "unknown backend ''"},
+      {"height --at 1,2 --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"height --at 1,2 --preset ''", "", "unknown planet preset ''"},
+      {"height --at 1,2 --preset {h}/garbage.bin", "", "garbage.bin:1:1: not"},
+      {"height --at 1,2 --preset {h}/latin1.toml", "", "latin1.toml:2:12: not UTF-8 text (invalid byte 0xe9)"},
+      {"height --at 1,2 --preset {h}/truncated.toml", "", "truncated.toml:2:"},
+      {"height --at 1,2 --preset {h}/empty.toml", "", "empty.toml: empty document"},
+      {"height --at 1,2 --preset {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"height --at 1,2 --preset {h}/deep.toml", "", "deep.toml:1: a key path of 40001 parts nests too deep"},
+      {"height --at 1,2 --preset {h}/huge.toml", "", "huge.toml: too large"},
+      {"height --at 1,2 --preset {h}/missing.toml", "", "missing.toml': No such file or directory"},
+      // planet render
+      {"render --size 0x0 --out {out}/r.png", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"render --size 100000x100000 --out {out}/r.png", "", "--size 100000x100000 is outside"},
+      {"render --size big", "", "--size expects WIDTHxHEIGHT in pixels, got 'big'"},
+      {"render --size ''", "", "--size expects WIDTHxHEIGHT in pixels, got ''"},
+      {"render --size -1x-1", "", "--size expects WIDTHxHEIGHT in pixels, got '-1x-1'"},
+      {"render --size nanxnan", "", "--size expects WIDTHxHEIGHT in pixels, got 'nanxnan'"},
+      {"render --size 1e3x1e3", "", "--size expects WIDTHxHEIGHT in pixels, got '1e3x1e3'"},
+      {"render --size 99999999999999999999x2", "", "got '99999999999999999999x2'"},
+      {"render --size '64\nx36'", "", "--size expects WIDTHxHEIGHT in pixels, got '64?x36'"},
+      {"render --camera 95,0,100", "", "camera latitude 95 is outside [-90, 90] degrees"},
+      {"render --camera 1,2", "", "expected 3 or 5 numbers"},
+      {"render --camera 1,2,x", "", "'x' is not a finite number"},
+      {"render --camera nan,0,0", "", "'nan' is not a finite number"},
+      {"render --camera 0,0,1e400", "", "'1e400' is not a finite number"},
+      {"render --camera 0,0,-1e12", "", "camera altitude -1000000000000 m is outside"},
+      {"render --camera ''", "", "camera '': '' is not a finite number"},
+      {"render --sun 10,100", "", "sun elevation 100 is outside [-90, 90] degrees"},
+      {"render --sun nan,1", "", "'nan' is not a finite number"},
+      {"render --sun ''", "", "sun '': '' is not a finite number"},
+      {"render --fov 0", "", "--fov must be in (0, 179] degrees, got 0"},
+      {"render --fov -5", "", "--fov must be in (0, 179] degrees, got -5"},
+      {"render --fov inf", "", "--fov must be in (0, 179] degrees, got inf"},
+      {"render --fov ''", "", "--fov expects a number, got ''"},
+      {"render --time nan", "", "--time must be a number of seconds within ±1e9, got nan"},
+      {"render --time 1e12", "", "--time must be a number of seconds within ±1e9, got 1000000000000"},
+      {"render --time ''", "", "--time expects a number, got ''"},
+      {"render --exposure -1", "", "--exposure must be in (0, 1e6], got -1"},
+      {"render --exposure ''", "", "--exposure expects a number, got ''"},
+      {"render --seed 99999999999", "", "--seed must be in 0..4294967295"},
+      {"render --seed -1", "", "--seed must not be negative, got -1"},
+      {"render --seed ''", "", "--seed expects a whole number, got ''"},
+      {"render --seed 1e12", "", "--seed expects a whole number, got '1e12'"},
+      {"render --out ''", "", "--out must name a file"},
+      {"render --out {out}", "", "--out must name a file, got '"},
+      {"render --out {out}/", "", "--out must name a file, got '"},
+      {"render --out {out}/no_such_dir/r.png", "", "cannot write '", 1},
+      {"render --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"render --preset {h}/garbage.bin --out {out}/r.png", "", "garbage.bin:1:1: not"},
+      {"render --preset {h}/latin1.toml --out {out}/r.png", "", "latin1.toml:2:12: not UTF-8 text"},
+      {"render --preset {h}/truncated.toml --out {out}/r.png", "", "truncated.toml:2:"},
+      {"render --preset {h}/empty.toml --out {out}/r.png", "", "empty.toml: empty document"},
+      {"render --preset {h}/dir.toml --out {out}/r.png", "", "dir.toml': Is a directory"},
+      {"render --preset {h}/deep.toml --out {out}/r.png", "", "deep.toml:1: a key path of 40001 parts"},
+      {"render --preset {h}/huge.toml --out {out}/r.png", "", "huge.toml: too large"},
+      {"render --frobnicate", "", "--frobnicate"},
+      // planet view (every check comes before a window opens)
+      {"view --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
+      {"view --size 100000x100000", "", "--size 100000x100000 is outside"},
+      {"view --size ''", "", "--size expects WIDTHxHEIGHT in pixels, got ''"},
+      {"view --vsync maybe", "", "--vsync must be 'on' or 'off', got 'maybe'"},
+      {"view --vsync ''", "", "--vsync must be 'on' or 'off', got ''"},
+      {"view --quality best", "", "unknown quality 'best'"},
+      {"view --quality ''", "", "unknown quality ''"},
+      {"view --frames -1", "", "--frames must not be negative, got -1"},
+      {"view --frames 1e12", "", "--frames expects a whole number, got '1e12'"},
+      {"view --frames ''", "", "--frames expects a whole number, got ''"},
+      {"view --frames 4294967295", "", "--frames must be at most 100000000, got 4294967295"},
+      {"view --frames 5000000000", "", "--frames = 5000000000"},
+      {"view --fov nan", "", "--fov must be in (0, 179] degrees, got nan"},
+      {"view --fov ''", "", "--fov expects a number, got ''"},
+      {"view --camera 1,2,nan", "", "'nan' is not a finite number"},
+      {"view --camera ''", "", "camera '': '' is not a finite number"},
+      {"view --sun ''", "", "sun '': '' is not a finite number"},
+      {"view --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"view --preset {h}/garbage.bin", "", "garbage.bin:1:1: not"},
+      {"view --preset {h}/latin1.toml", "", "latin1.toml:2:12: not UTF-8 text"},
+      {"view --preset {h}/truncated.toml", "", "truncated.toml:2:"},
+      {"view --preset {h}/empty.toml", "", "empty.toml: empty document"},
+      {"view --preset {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"view --preset {h}/deep.toml", "", "deep.toml:1: a key path of 40001 parts"},
+      {"view --path /nonexistent/path.txt", "", "cannot read '/nonexistent/path.txt'"},
+      {"view --path ''", "", "--path must name a file"},
+      {"view --path {h}/garbage.bin", "", "garbage.bin:1: '"},
+      {"view --path {h}/latin1.path", "", "latin1.path:2: '?-80' is not a number"},
+      {"view --path {h}/nul.path", "", "nul.path:2: '?' is not a number"},
+      {"view --path {h}/truncated.path", "", "truncated.path:2: '1e' is not a number"},
+      {"view --path {h}/empty.path", "", "empty.path: a camera path needs at least 2 keys, got 0"},
+      {"view --path {h}/hugetime.path", "", "hugetime.path:2: time_s 1e+300 is outside"},
+      {"view --path {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"view --screenshot /tmp/", "", "--screenshot must name a file, got '/tmp/'"},
+      {"view --screenshot ''", "", "--screenshot must name a file"},
+      {"view --screenshot {out}", "", "--screenshot must name a file, got '"},
+      {"view --screenshot {out}/no_such_dir/s.png", "", "cannot write '", 1},
+      {"view --size 0x0 --screenshot {out}/s.png", "", "--size 0x0 is outside"},
+      {"view --frobnicate", "", "--frobnicate"},
+      // planet itself
+      {"frobnicate", "", "frobnicate"},
+      {"", "", "a command is required"},
   };
+  int index = 0;
   for (const Case& c : cases) {
-    CommandResult run = planet(c.args, c.input);
-    EXPECT_EQ(run.exitCode, 2) << c.args << "\n" << run.err;
-    EXPECT_EQ(lineCount(run.err), 1u) << c.args << "\n" << run.err;
-    EXPECT_NE(run.err.find(c.mustContain), std::string::npos) << c.args << "\n" << run.err;
-    EXPECT_EQ(run.out, "") << c.args << ": nothing may be printed on an error";
+    // A fresh folder per case for the outputs it names: it must stay empty (no file, no temporary).
+    const std::filesystem::path out = tempDir() / ("out" + std::to_string(index++));
+    std::filesystem::create_directories(out);
+    const std::string args = expand(c.args, out.string());
+    CommandResult run = planet(args, c.input);
+    EXPECT_EQ(run.exitCode, c.exitCode) << args << "\n" << run.err;
+    EXPECT_EQ(lineCount(run.err), 1u) << args << "\n" << run.err;
+    EXPECT_NE(run.err.find(expand(c.mustContain, out.string())), std::string::npos) << args << "\n" << run.err;
+    EXPECT_EQ(run.out, "") << args << ": nothing may be printed on an error";
+    EXPECT_LT(run.seconds, 1.0) << args << ": an error must come before any Vulkan work";
+    EXPECT_TRUE(std::filesystem::is_empty(out)) << args << ": left a file behind";
+    std::filesystem::remove_all(out);
   }
+}
+
+// The point stream's friendly forms: CRLF line ends, a byte order mark, '+' signs, comments
+// after a point and a last line without a newline give the same values as plain lines.
+TEST(Cli, NoiseReadsCrlfByteOrderMarksCommentsAndALastLineWithoutNewline) {
+  CommandResult plain = planet("noise --type fbm --seed 3", "0.1 0.2 0.3\n1.5 -2.25 3.75\n4 5 6\n");
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  CommandResult friendly =
+      planet("noise --type fbm --seed 3", "\xef\xbb\xbf+0.1 0.2 0.3 # first\r\n1.5, -2.25, 3.75\r\n\r\n4 5 6");
+  ASSERT_EQ(friendly.exitCode, 0) << friendly.err;
+  EXPECT_EQ(friendly.out, plain.out);
+  EXPECT_EQ(lineCount(plain.out), 3u);
 }
 
 TEST(Cli, HeightPrintsOneHeightPerSampleInMetres) {

@@ -13,19 +13,13 @@
 
 #include "core/image_file.h"
 #include "core/subprocess.h"
+#include "test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempDir() {
-  static fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("planet_viewer_test_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
+fs::path tempDir() { return planet::test::processTempDir("viewer_test"); }
 
 bool haveXvfb() { return planet::runProcess({"sh", "-c", "command -v xvfb-run"}, "").exitCode == 0; }
 
@@ -147,6 +141,27 @@ TEST(Viewer, SurvivesAResizeStormAndSavesAScreenshotOnF12) {
   const planet::Rgba8Image keyShot = planet::readPng(saved[0].string());
   EXPECT_EQ(keyShot.width, 240u);
   EXPECT_EQ(keyShot.height, 135u);
+}
+
+TEST(Viewer, ALostDeviceOrTooLittleMemoryEndsItWithOneLineAndNoScreenshot) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb)";
+  // Injected faults (see device_fault_test.cpp): submission 40 falls in the first frames, after
+  // the renderer's uploads; 1 MiB does not hold the render targets.
+  for (const char* fault : {"PLANET_FAULT=device-lost@40", "PLANET_DEVICE_MEMORY_LIMIT=1M"}) {
+    const fs::path shot = tempDir() / "fault.png";
+    fs::remove(shot);
+    std::vector<std::string> argv = {"env", fault, "xvfb-run", "-a", "-s", "-screen 0 1024x768x24", PLANET_EXE,
+                                     "view", "--frames", "60", "--size", "160x90", "--quality", "low",
+                                     "--screenshot", shot.string()};
+    const planet::ProcessResult run = planet::runProcess(argv, "");
+    if (noDevice(run)) GTEST_SKIP() << run.err;
+    EXPECT_EQ(run.exitCode, 1) << fault << "\n" << run.err;
+    EXPECT_NE(run.err.find(fault[7] == 'F' ? "the Vulkan device was lost" : "out of device memory"), std::string::npos)
+        << fault << "\n" << run.err;
+    EXPECT_EQ(run.err.find("VUID"), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find("internal error"), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(shot)) << fault;
+  }
 }
 
 TEST(Viewer, WithoutADisplayItSaysSoAndPointsToRender) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages planet needs (only those missing), then configures and
-# builds it with a CMake preset (default: release; PLANET_PRESET=debug|asan for the others).
+# builds it with a CMake preset (default: release; PLANET_PRESET=debug|asan|fuzz for the others).
 # Installing needs root: run as root or with sudo; otherwise the script lists what is missing
 # and stops.
 set -euo pipefail
@@ -24,6 +24,11 @@ packages=(
   libglfw3-dev libimgui-dev
   xvfb xauth xdotool
 )
+preset=${PLANET_PRESET:-release}
+# The fuzz preset (tools/fuzz.sh) builds the parsers' libFuzzer targets with clang.
+if [[ $preset == fuzz ]]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -43,7 +48,6 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-preset=${PLANET_PRESET:-release}
 echo "planet setup: configuring and building (preset $preset)"
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
