@@ -9,6 +9,8 @@
 #   FUZZ_TARGETS="preset points" tools/fuzz.sh 120
 #   FUZZ_SECONDS_camera_path=300 tools/fuzz.sh  one target's time, overriding its share
 #   tools/fuzz.sh --merge                     add build/fuzz/corpus's new coverage to tests/fuzz/corpus
+#   FUZZ_SEED=0 tools/fuzz.sh 3600            a random seed (default 1: CI's runs mutate alike, so a
+#                                             finding there is reproducible, not luck of the draw)
 #
 # A finding: reproduce it with build/fuzz/tests/fuzz/planet_fuzz_<target> FILE, then copy FILE
 # into tests/fuzz/corpus/<target>/ so that the corpus replay test (ctest -L unit) fails until
@@ -84,7 +86,7 @@ for target in "${targets[@]}"; do
   # 64 KiB is well past any real preset or path; -timeout and -rss_limit_mb make a hang or a
   # runaway allocation a finding rather than a stuck CI job.
   "$exe" -dict="tests/fuzz/$target.dict" -max_len=65536 -timeout=5 -rss_limit_mb=2048 \
-    -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix="$findings/" \
+    -max_total_time="$seconds" -seed="${FUZZ_SEED:-1}" -print_final_stats=1 -artifact_prefix="$findings/" \
     "$scratch" "tests/fuzz/corpus/$target" >"$log" 2>&1 || status=$?
   # libFuzzer's last status line: executions, coverage, corpus size, executions per second.
   grep -E '^#[0-9]+' "$log" | tail -n 1 | sed "s/^/fuzz: $target: /" || true
