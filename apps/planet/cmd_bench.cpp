@@ -20,10 +20,9 @@ constexpr size_t kMaxBenchPoints = 50'000'000;
 struct BenchNoiseCommand {
   noise::NoiseBenchOptions options;
   std::string json;
-  bool jsonGiven = false;  // --json '' is an error, not "no JSON"
 };
 
-int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
+int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd, const CLI::App& sub) {
   const noise::NoiseBenchOptions& o = cmd.options;
   if (o.points < 1 || o.points > kMaxBenchPoints)
     throw UsageError(fmt::format("--points must be in 1..{}, got {}", kMaxBenchPoints, o.points));
@@ -32,7 +31,7 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd) {
         fmt::format("--octaves must be in {}..{}, got {}", noise::kMinOctaves, noise::kMaxOctaves, o.octaves));
   if (o.repeats < 5 || o.repeats > 1000)
     throw UsageError(fmt::format("--repeats must be in 5..1000, got {}", o.repeats));
-  if (cmd.jsonGiven) checkOutputFile("--json", cmd.json);
+  if (sub.count("--json")) checkOutputFile("--json", cmd.json);  // given but empty is an error too
   auto context = openContext(global);
   const bool interactive = ::isatty(STDERR_FILENO);
   noise::NoiseBenchReport report = noise::runNoiseBench(*context, o, [&](const std::string& method) {
@@ -67,12 +66,11 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   sub->add_option("--octaves", cmd->options.octaves, "fBm octaves")->capture_default_str();
   sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")
       ->capture_default_str();
-  CLI::Option* json = sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
+  sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
   checkNumbersAsText(*sub);
-  sub->callback([&global, &exitCode, cmd, rejectFrameOptions, json] {
+  sub->callback([&global, &exitCode, cmd, rejectFrameOptions, sub] {
     rejectFrameOptions("noise");
-    cmd->jsonGiven = json->count() > 0;
-    exitCode = runBenchNoise(global, *cmd);
+    exitCode = runBenchNoise(global, *cmd, *sub);
   });
   addBenchSoakCommand(*bench, global, exitCode, rejectFrameOptions);
 }

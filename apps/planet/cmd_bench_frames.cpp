@@ -23,7 +23,6 @@ struct FrameBenchCommand {
   int64_t warmup = 5;
   double fovDeg = 60.0;
   std::string sun;
-  bool sunGiven = false;
   std::string path;
   std::string json;
   std::string csv;
@@ -61,7 +60,7 @@ class Progress {
   std::chrono::steady_clock::time_point lastLine_{};
 };
 
-int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd) {
+int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, const CLI::App& bench) {
   FrameBenchOptions o;
   parseSize(cmd.size, o.width, o.height);
   if (cmd.frames < 1 || cmd.frames > kBenchMaxFrames)
@@ -85,7 +84,7 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd) {
   const std::string pathSource = cmd.path.empty() ? "default" : cmd.path;
   try {
     planet = resolvePreset(cmd.preset);
-    if (cmd.sunGiven) o.sun = parseSunPose(cmd.sun);
+    if (bench.count("--sun")) o.sun = parseSunPose(cmd.sun);  // --sun '' is an error, not the default
     path = cmd.path.empty() ? defaultCameraPath(planet.radiusM) : loadCameraPath(cmd.path);
   } catch (const Error& e) {
     throw UsageError(e.what());
@@ -131,9 +130,8 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
   add(bench.add_option("--warmup", cmd->warmup, "Untimed frames before them, spread over the path the same way")
           ->capture_default_str());
   add(bench.add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str());
-  CLI::Option* sun = bench.add_option("--sun", cmd->sun,
-                                      "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]");
-  add(sun);
+  add(bench.add_option("--sun", cmd->sun,
+                       "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));
   addFile(bench.add_option("--path", cmd->path,
                            "Camera path file: lines 'time_s lat lon height_m heading pitch' (height above the ground), "
                            "# comments [default: a descent from 40,000 km to 2 m, then a traverse at 300 m/s]"));
@@ -152,12 +150,11 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
     return std::string();
   };
   checkNumbersAsText(bench);
-  bench.callback([&global, &exitCode, cmd, &bench, givenOption, sun] {
+  bench.callback([&global, &exitCode, cmd, &bench, givenOption] {
     // Without options of its own, or with a benchmark command, there is nothing to do here (main
     // reports a missing command; the command rejects these options itself).
     if (givenOption().empty() || !bench.get_subcommands().empty()) return;
-    cmd->sunGiven = sun->count() > 0;  // --sun '' is an error, not the default sun
-    exitCode = runFrameBench(global, *cmd);
+    exitCode = runFrameBench(global, *cmd, bench);
   });
   return [givenOption](const std::string& command) {
     const std::string given = givenOption();

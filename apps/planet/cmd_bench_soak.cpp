@@ -114,7 +114,7 @@ void addBenchSoakCommand(CLI::App& bench, const GlobalOptions& global, int& exit
   sub->callback([&global, &exitCode, cmd, sub, rejectFrameOptions] {
     rejectFrameOptions("soak");
     // Checked before minutes of frames, not after them.
-    if (sub->get_option("--json")->count()) checkOutputFile("--json", cmd->json);
+    if (sub->count("--json")) checkOutputFile("--json", cmd->json);
     exitCode = runBenchSoak(global, *cmd);
   });
 }
