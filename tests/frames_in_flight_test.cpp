@@ -13,6 +13,7 @@
 #include "render/renderer.h"
 #include "vk/commands.h"
 #include "vk/context.h"
+#include "vk/frame_ring.h"
 
 namespace planet::test {
 namespace {
@@ -37,66 +38,10 @@ const CameraPose kCameras[] = {
     {37.3, -118.5, 5000.0, 90.0, -25.0},
 };
 
-// Command buffers and fences of the frame slots, as the viewer has them.
-struct Slots {
-  vk::Context& context;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkCommandBuffer cmd[Renderer::kFramesInFlight] = {};
-  VkFence fence[Renderer::kFramesInFlight] = {};
-  bool submitted[Renderer::kFramesInFlight] = {};
-
-  explicit Slots(vk::Context& ctx) : context(ctx) {
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context.universalFamily;
-    VK_CHECK(vkCreateCommandPool(context.device, &poolInfo, nullptr, &pool));
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = Renderer::kFramesInFlight;
-    VK_CHECK(vkAllocateCommandBuffers(context.device, &alloc, cmd));
-    for (VkFence& f : fence) {
-      VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-      VK_CHECK(vkCreateFence(context.device, &info, nullptr, &f));
-    }
-  }
-  ~Slots() {
-    waitAll();
-    for (VkFence f : fence) vkDestroyFence(context.device, f, nullptr);
-    vkDestroyCommandPool(context.device, pool, nullptr);
-  }
-  Slots(const Slots&) = delete;
-  Slots& operator=(const Slots&) = delete;
-
-  // Waits for the slot's last frame; true when there was one.
-  bool wait(uint32_t slot) {
-    if (!submitted[slot]) return false;
-    VK_CHECK(vkWaitForFences(context.device, 1, &fence[slot], VK_TRUE, vk::kSubmitTimeoutNs));
-    submitted[slot] = false;
-    return true;
-  }
-  void waitAll() {
-    for (uint32_t slot = 0; slot < Renderer::kFramesInFlight; ++slot) wait(slot);
-  }
-  void submit(uint32_t slot) {
-    VK_CHECK(vkResetFences(context.device, 1, &fence[slot]));
-    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    info.commandBufferCount = 1;
-    info.pCommandBuffers = &cmd[slot];
-    VK_CHECK(vkQueueSubmit(context.graphicsQueue, 1, &info, fence[slot]));
-    submitted[slot] = true;
-  }
-};
-
-void recordFrame(Renderer& renderer, Slots& slots, uint32_t slot, const CameraPose& camera, double timeS) {
+void recordFrame(Renderer& renderer, vk::FrameRing& slots, uint32_t slot, const CameraPose& camera, double timeS) {
   const SunPose sun{};
   renderer.prepare(camera, sunDirection(sun, renderer.clampToGround(camera)), timeS, slot);
-  VK_CHECK(vkResetCommandBuffer(slots.cmd[slot], 0));
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(slots.cmd[slot], &begin));
-  renderer.record(slots.cmd[slot], slot);
-  VK_CHECK(vkEndCommandBuffer(slots.cmd[slot]));
+  renderer.record(slots.begin(slot), slot);
 }
 
 TEST_F(FramesInFlight, TwoSlotsDrawWhatOneFrameAtATimeDraws) {
@@ -121,7 +66,7 @@ TEST_F(FramesInFlight, TwoSlotsDrawWhatOneFrameAtATimeDraws) {
   // executes; then frame i−1 is waited for and its image read before frame i is submitted.
   {
     Renderer renderer(context(), planet, settings);
-    Slots slots(context());
+    vk::FrameRing slots(context());
     for (size_t i = 0; i < frames; ++i) {
       const uint32_t slot = uint32_t(i % Renderer::kFramesInFlight);
       if (slots.wait(slot)) {
@@ -149,7 +94,7 @@ TEST_F(FramesInFlight, TwoSlotsDrawWhatOneFrameAtATimeDraws) {
   // other's. Only the last image can be read; synchronization validation checks every frame.
   {
     Renderer renderer(context(), planet, settings);
-    Slots slots(context());
+    vk::FrameRing slots(context());
     for (size_t i = 0; i < frames; ++i) {
       const uint32_t slot = uint32_t(i % Renderer::kFramesInFlight);
       slots.wait(slot);

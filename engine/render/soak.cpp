@@ -13,8 +13,9 @@
 #include "core/error.h"
 #include "core/process_memory.h"
 #include "render/renderer.h"
-#include "vk/commands.h"
 #include "vk/context.h"
+#include "vk/image.h"
+#include "vk/frame_ring.h"
 
 namespace planet {
 namespace {
@@ -26,77 +27,6 @@ using Clock = std::chrono::steady_clock;
 double millisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-// Command buffers and fences of the frame slots, as the viewer has them (without a swapchain).
-class FrameRing {
- public:
-  explicit FrameRing(vk::Context& context) : context_(context) {
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context.universalFamily;
-    VK_CHECK(vkCreateCommandPool(context.device, &poolInfo, nullptr, &pool_));
-    try {
-      VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-      alloc.commandPool = pool_;
-      alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-      alloc.commandBufferCount = Renderer::kFramesInFlight;
-      VK_CHECK(vkAllocateCommandBuffers(context.device, &alloc, cmd_));
-      for (VkFence& fence : fences_) {
-        VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        VK_CHECK(vkCreateFence(context.device, &info, nullptr, &fence));
-      }
-    } catch (...) {
-      release();
-      throw;
-    }
-  }
-  ~FrameRing() {
-    // Nothing may still execute when the fences and command buffers go.
-    if (submitted_[0] || submitted_[1]) vkDeviceWaitIdle(context_.device);
-    release();
-  }
-  FrameRing(const FrameRing&) = delete;
-  FrameRing& operator=(const FrameRing&) = delete;
-
-  VkCommandBuffer begin(uint32_t slot) {
-    VK_CHECK(vkResetCommandBuffer(cmd_[slot], 0));
-    VkCommandBufferBeginInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd_[slot], &info));
-    return cmd_[slot];
-  }
-  void submit(uint32_t slot) {
-    VK_CHECK(vkEndCommandBuffer(cmd_[slot]));
-    VK_CHECK(vkResetFences(context_.device, 1, &fences_[slot]));
-    VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cmdInfo.commandBuffer = cmd_[slot];
-    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    submit.commandBufferInfoCount = 1;
-    submit.pCommandBufferInfos = &cmdInfo;
-    VK_CHECK(vk::queueSubmit(context_, context_.graphicsQueue, submit, fences_[slot]));
-    submitted_[slot] = true;
-  }
-  // Waits for the slot's last frame; true when there was one.
-  bool wait(uint32_t slot) {
-    if (!submitted_[slot]) return false;
-    VK_CHECK(vkWaitForFences(context_.device, 1, &fences_[slot], VK_TRUE, vk::kSubmitTimeoutNs));
-    submitted_[slot] = false;
-    return true;
-  }
-
- private:
-  void release() {
-    for (VkFence fence : fences_)
-      if (fence) vkDestroyFence(context_.device, fence, nullptr);
-    if (pool_) vkDestroyCommandPool(context_.device, pool_, nullptr);
-  }
-
-  vk::Context& context_;
-  VkCommandPool pool_ = VK_NULL_HANDLE;
-  VkCommandBuffer cmd_[Renderer::kFramesInFlight] = {};
-  VkFence fences_[Renderer::kFramesInFlight] = {};
-  bool submitted_[Renderer::kFramesInFlight] = {};
-};
 
 // The planet frame k draws: the preset with the frame's seed offset, stars as the quality draws them.
 PlanetDescription framePlanet(const PlanetDescription& planet, const SoakFrameState& state, ViewQuality quality) {
@@ -365,7 +295,7 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
   report.gpuMs.reserve(options.frames - options.warmup);
   report.samples.reserve(options.frames / kSoakSampleFrames + 3);
   {
-    FrameRing ring(context);
+    vk::FrameRing ring(context);
     uint32_t slotFrame[Renderer::kFramesInFlight] = {};
     // Waits for `slot`'s last frame and keeps its GPU time (the Renderer's timings of that slot).
     auto finish = [&](uint32_t slot) {
