@@ -24,7 +24,25 @@ const uint kSchemeAltitude = 1u;
 const uint kSchemeMoon = 2u;
 const uint kSchemeMars = 3u;
 
-vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter) {
+// The earth scheme's vegetation at a point: forest and grass where it is wet, desert in the
+// subtropical belts (about 15-35° of latitude, where the Hadley cells' dry air sinks), tundra
+// toward the ice caps; the colour noise breaks every zone into patches. Derived from the
+// preset's lowland, highland and beach colours.
+vec3 vegetation(float latitudeDeg, float jitter) {
+  float belt = (latitudeDeg - 24.0f) / 10.0f;
+  float dryness = clamp(0.85f * exp(-belt * belt) + 0.6f * jitter + 0.12f, 0.0f, 1.0f);
+  vec3 forest = 0.75f * frame.colorLowland.rgb;
+  vec3 grass = 1.15f * mix(frame.colorLowland.rgb, frame.colorHighland.rgb, 0.35f);
+  vec3 desert = mix(frame.colorBeach.rgb, frame.colorHighland.rgb, 0.45f);
+  vec3 c = mix(forest, grass, smoothstep(0.05f, 0.4f, dryness));
+  c = mix(c, desert, smoothstep(0.45f, 0.75f, dryness));
+  float tundra = smoothstep(52.0f, 64.0f, latitudeDeg + 6.0f * jitter);
+  return mix(c, 0.9f * frame.colorHighland.rgb, tundra);
+}
+
+// pixelM: how much the height changes across this pixel (fwidth), so that bands thinner than a
+// pixel (a beach seen from orbit) fade to their share of it instead of aliasing into dots.
+vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter, float pixelM) {
   uint scheme = uint(frame.shading.y);
   float beach = frame.planet.z;
   float snowLine = frame.planet.w;
@@ -41,9 +59,18 @@ vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter) {
                  smoothstep(-1500.0f, 1500.0f, altitude + 600.0f * jitter));
     return mix(c, frame.colorCliff.rgb, smoothstep(0.25f, 0.5f, slope));
   }
-  vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb,
-               smoothstep(0.1f * snowLine, 0.7f * snowLine, altitude + 250.0f * jitter));
-  if (scheme == kSchemeEarth && altitude < beach * (1.0f + 0.6f * jitter)) c = frame.colorBeach.rgb;
+  vec3 c = frame.colorLowland.rgb;
+  float highland = 0.7f * snowLine;
+  if (scheme == kSchemeEarth) {
+    c = vegetation(degrees(asin(min(abs(sinLatitude), 1.0f))), jitter);
+    highland = 0.85f * snowLine;
+  }
+  c = mix(c, frame.colorHighland.rgb, smoothstep(0.25f * snowLine, highland, altitude + 250.0f * jitter));
+  if (scheme == kSchemeEarth && beach > 0.0f) {
+    float top = beach * (1.0f + 0.6f * jitter);
+    float sand = (1.0f - smoothstep(top - pixelM, top + pixelM, altitude)) * clamp(top / max(pixelM, 1e-3f), 0.0f, 1.0f);
+    c = mix(c, frame.colorBeach.rgb, sand);
+  }
   c = mix(c, frame.colorCliff.rgb, smoothstep(0.3f, 0.55f, slope + 0.08f * jitter));
   // The snow line falls toward the poles; snow does not stick to cliffs.
   float snowAltitude = snowLine * (1.0f - 0.6f * lat * lat * lat * lat) + 300.0f * jitter;
@@ -53,13 +80,15 @@ vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter) {
 }
 
 void main() {
+  gl_FragDepth = gl_FragCoord.z;
   if (frame.shading.z > 0.5f) {  // wireframe debug view
     outColor = vec4(0.05f, 0.25f, 0.08f, 1.0f);
     return;
   }
   vec3 normal;
   float height;
-  surfaceDetail(inAttributes.xy, inNormal, inHeight, normal, height);
+  surfaceDetail(inAttributes.xy, inUp, inNormal, inHeight, normal, height);
+  float pixelM = fwidth(height);  // before any branch: derivatives need uniform control flow
   vec3 up = normalize(inUp);
   float jitter = inAttributes.z;
   float seaLevel = frame.planet.x;
@@ -67,17 +96,24 @@ void main() {
   vec3 sun = frame.sunLocal.xyz;
   vec3 albedo;
   if (ocean && height < seaLevel) {
+    // Under water at this pixel, though the triangle may be above sea level: the mesh is
+    // coarser than the patch heights, and near a coast it often is. Pushed back to twice its
+    // distance, it cannot hide the sea surface in front of it, so the water pass draws the sea
+    // here too and the coastline is the patch heights' (the mesh's triangles showed as sandy
+    // polygons along the shore). Reversed-Z: half the depth is twice the distance.
+    if (frame.water.z > 0.5f) gl_FragDepth = 0.5f * gl_FragCoord.z;
     // Sea floor: sand near the coast, darker mud deeper down (the water pass tints it).
     float depth = seaLevel - height;
-    albedo = mix(frame.colorBeach.rgb, 0.4f * frame.colorLowland.rgb + 0.3f * frame.colorBeach.rgb,
-                 smoothstep(0.0f, 60.0f, depth));
+    // A sand shelf narrower than the pixel shows only its share of it.
+    float sand = (1.0f - smoothstep(0.0f, 60.0f, depth)) * clamp(60.0f / max(pixelM, 1e-3f), 0.0f, 1.0f);
+    albedo = mix(0.4f * frame.colorLowland.rgb + 0.3f * frame.colorBeach.rgb, frame.colorBeach.rgb, sand);
     if (frame.water.z < 0.5f) {  // no water pass (debug): show the sea as its colour
       albedo = mix(frame.colorShallowWater.rgb, frame.colorDeepWater.rgb, smoothstep(0.0f, 200.0f, depth));
       normal = up;
     }
   } else {
     float slope = 1.0f - max(dot(normal, up), 0.0f);
-    albedo = groundColor(height - seaLevel, slope, inAttributes.w, jitter);
+    albedo = groundColor(height - seaLevel, slope, inAttributes.w, jitter, pixelM);
   }
   vec3 sunLight = sunIrradianceAt(height, up);
   float muS = dot(up, sun);

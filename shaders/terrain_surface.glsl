@@ -14,14 +14,20 @@ layout(set = 0, binding = kRenderBindingTransmittance) uniform sampler2D transmi
 // (no rectangles where one level ends). Level floor(lod) and the next are blended by the
 // fraction; a level that does not cover the pixel (or is within its outer tenth) hands its
 // weight on to coarser ones, and beyond the coarsest the vertex values remain.
-void surfaceDetail(vec2 face, vec3 vertexNormal, float vertexHeight, out vec3 normal, out float height) {
+// The levels lie on the camera's cube face, projected from the centre (face coordinates are
+// tan of the angle from the face normal): far beyond the face, near the edge of the visible
+// hemisphere from orbit, one texel stretches over tens of pixels and the coast turned into
+// blocks. There (more than ~65° from the face normal) the patches fade out to the vertex values.
+void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, out vec3 normal, out float height) {
   vec3 accumulatedNormal = vec3(0.0f);
   float accumulatedHeight = 0.0f;
   float remaining = 1.0f;
   uint levels = uint(frame.refMinusNadir.w);
   // Face units per pixel (derivatives taken in uniform control flow, before any branch).
-  float footprint = max(length(dFdx(face)), length(dFdy(face)));
-  if (levels > 0u) {
+  float footprint = min(length(dFdx(face)), length(dFdy(face)));
+  vec3 faceNormal = mat3(frame.planetToLocal) * frame.faceNormal.xyz;
+  float onFace = smoothstep(0.35f, 0.45f, dot(normalize(up), faceNormal));
+  if (levels > 0u && onFace > 0.0f) {
     vec4 finest = frame.patchLevels[0];
     float resolution = float(textureSize(patches, 0).x);
     float lod = clamp(log2(max(footprint * finest.y * resolution, 1e-30f)), 0.0f, float(levels - 1u));
@@ -40,6 +46,9 @@ void surfaceDetail(vec2 face, vec3 vertexNormal, float vertexHeight, out vec3 no
       remaining *= 1.0f - weight;
     }
   }
+  accumulatedNormal *= onFace;
+  accumulatedHeight *= onFace;
+  remaining = 1.0f - onFace * (1.0f - remaining);
   normal = normalize(accumulatedNormal + remaining * normalize(vertexNormal));
   height = accumulatedHeight + remaining * vertexHeight;
 }

@@ -100,17 +100,18 @@ vec3 surfacePosition(uint index) {
   return offsetLocal + height * v.direction.xyz;
 }
 
-// Shading attributes at `offsetPlanet`: face Δa, Δb of the patch textures, colour-band noise,
+// Shading attributes at `offsetPlanet`: face Δa, Δb of the patch textures, colour noise,
 // sin(latitude) (layout of kRenderBindingAttributes).
 vec4 surfaceAttributes(vec3 offsetPlanet) {
   float radius = frame.camera.y;
   // Planet-frame direction, good to float precision (colour and latitude only).
   vec3 nadir = frame.localToPlanet[2].xyz;
   vec3 directionPlanet = nadir + offsetPlanet / radius;
-  // Colour-band noise: one plain simplex octave over a few km, enough to fray band edges.
+  // Colour noise: four fBm octaves from bandWavelengthM down (tens of km to a few km). It frays
+  // the colour-band edges and picks the vegetation (terrain.frag); float is enough here.
   NoiseParams band;
-  band.type = kNoiseSimplex;
-  band.octaves = 1u;
+  band.type = kNoiseFbm;
+  band.octaves = 4u;
   band.hash = kNoiseHashFast;
   band.seedMix = 0x5bd1e995u;
   band.lacunarity = 2.0f;

@@ -20,9 +20,14 @@ layout(location = 0) out vec4 outColor;
 void main() {
   vec3 terrainNormal;
   float ground;
-  surfaceDetail(inAttributes.xy, inNormal, inHeight, terrainNormal, ground);
+  surfaceDetail(inAttributes.xy, inUp, inNormal, inHeight, terrainNormal, ground);
   float depth = frame.planet.x - ground;
-  if (depth <= 0.0f) discard;  // dry land at this pixel: the coastline follows the patch heights
+  // The coastline follows the patch heights. It is antialiased: the water covers the part of
+  // the pixel where the depth, extrapolated over the pixel by its screen derivatives, is
+  // positive (a hard cut left stair-steps where a texel spans a few pixels, as near the limb).
+  float fwidthDepth = fwidth(depth);
+  float coverage = clamp(depth / max(fwidthDepth, 1e-6f) + 0.5f, 0.0f, 1.0f);
+  if (coverage <= 0.0f) discard;  // dry land over the whole pixel
   vec3 up = normalize(inUp);
   vec3 toCamera = normalize(inToCamera);
   vec3 sun = frame.sunLocal.xyz;
@@ -33,7 +38,10 @@ void main() {
   vec3 axisB = mat3(frame.planetToLocal) * frame.faceAxisB.xyz;
   vec2 offsetM = inAttributes.xy * frame.camera.y;
   vec2 slope = vec2(0.0f);
-  for (uint i = 0u; i < kWaterWaveCount; ++i) {
+  // Without patch textures (quality low, --no-patches) there is no face frame and the CPU
+  // leaves the waves zero: the sea is then a mirror (normalize(0) would make every pixel NaN).
+  uint waveCount = frame.refMinusNadir.w > 0.5f ? kWaterWaveCount : 0u;
+  for (uint i = 0u; i < waveCount; ++i) {
     vec4 wave = frame.waves[i];  // xy: wave vector (1/m, face axes), z: phase at the reference, w: amplitude · k
     float phase = wave.z + dot(wave.xy, offsetM);
     slope += wave.w * cos(phase) * normalize(wave.xy);
@@ -63,7 +71,9 @@ void main() {
   float lat = abs(inAttributes.w) + 0.04f * inAttributes.z;
   float ice = smoothstep(iceCap + 0.02f, iceCap + 0.04f, lat);  // sea ice a little poleward of the land caps
   vec3 upwelling = mix(body, frame.colorSnow.rgb, ice) / kAtmospherePi * (sunLight * max(muS, 0.0f) + skyLight);
-  float opacity = max(1.0f - exp(-depth / clarity * 3.0f), ice);
+  // Where the depth changes by more than the clarity across the pixel (the coast from far
+  // away), the clear shallow strip is a small part of it: weigh in half the pixel's depth range.
+  float opacity = max(1.0f - exp(-(depth + 0.5f * fwidthDepth) / clarity * 3.0f), ice);
   float alpha = fresnel + (1.0f - fresnel) * opacity;
-  outColor = vec4(specular * (1.0f - ice) + (1.0f - fresnel) * opacity * upwelling, alpha);
+  outColor = coverage * vec4(specular * (1.0f - ice) + (1.0f - fresnel) * opacity * upwelling, alpha);
 }

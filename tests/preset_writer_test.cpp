@@ -323,7 +323,7 @@ TEST(PresetWriter, TextHasThePresetLayoutWithEveryKeyAndResolvedDefaults) {
                            "[[layer]]\n",
                            "name = \"continents\"\n",
                            "type = \"fbm\"\n",
-                           "octaves = 7\n",
+                           "octaves = 9\n",
                            "lacunarity = 2.03\n",
                            "H = 0.9\n",
                            "offset = 0\n",  // the fbm default, resolved
@@ -334,10 +334,10 @@ TEST(PresetWriter, TextHasThePresetLayoutWithEveryKeyAndResolvedDefaults) {
                            "amplitude_m = 3_500\n",
                            "[[layer]]\n",
                            "name = \"mountains\"\n",
-                           "frequency = 1.5e-6\n",
+                           "wavelength_m = 400_000\n",
                            "[[layer]]\n",
-                           "name = \"detail\"\n",
-                           "wavelength_m = 50_000\n",
+                           "name = \"hills\"\n",
+                           "wavelength_m = 20_000\n",
                            "[[layer]]\n",
                            "name = \"ground\"\n",
                            "wavelength_m = 3_000\n"}) {

@@ -206,6 +206,28 @@ TEST_F(SkyRender, OceanIsDarkerThanBeach) {
   EXPECT_GT(water.b, water.r);  // the sea is blue
 }
 
+// Without patch textures (the viewer's low quality) the sea has no face frame for its waves: it
+// once became NaN there and was drawn pale grey-blue. Open sea seen from 1000 km must look the
+// same with and without them.
+TEST_F(SkyRender, SeaLooksTheSameWithoutPatchTextures) {
+  const PlanetDescription earth = clearEarth();
+  const CameraPose camera{20, -30, 1.0e6, 0, -90};
+  ASSERT_LT(terrainHeightM(earth, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg)), -1000.0);
+  RenderSettings withPatches = skySettings();
+  RenderSettings withoutPatches = skySettings();
+  withoutPatches.terrain.patches = false;
+  const RenderResult a = Renderer(context(), earth, withPatches).render(camera, {135, 35});
+  const RenderResult b = Renderer(context(), earth, withoutPatches).render(camera, {135, 35});
+  for (const glm::vec4& texel : b.hdr)
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(texel[c]) && texel[c] >= 0.0f) << texel[c];
+  const Rgb sea = meanColor(a.image, 40, 24, 56, 40);
+  const Rgb plain = meanColor(b.image, 40, 24, 56, 40);
+  EXPECT_GT(sea.b, sea.r + 40.0);  // deep blue
+  EXPECT_NEAR(plain.r, sea.r, 4.0);
+  EXPECT_NEAR(plain.g, sea.g, 4.0);
+  EXPECT_NEAR(plain.b, sea.b, 4.0);
+}
+
 // White, unsaturated pixels: clouds (the clear sky is blue, the ground darker).
 double cloudyFraction(const Rgba8Image& image) {
   size_t white = 0;

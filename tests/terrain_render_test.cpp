@@ -360,7 +360,7 @@ TEST_F(TerrainRender, GoldenImages) {
     SunPose sun;
   } cases[] = {
       {"earth_orbit", "earth", {20.0, -30.0, 2.0e7, 0.0, -90.0}, {135.0, 35.0}},
-      {"earth_10km", "earth", {33.8, -90.0, 1.0e4, 0.0, -20.0}, {150.0, 35.0}},
+      {"earth_10km", "earth", {49.95, 43.3, 1.0e4, 90.0, -12.0}, {150.0, 35.0}},
       {"moon_ground", "moon", {-20.0, 40.0, 2.0, 0.0, -15.0}, {100.0, 12.0}},
       {"earth_ground_noon", "earth", {20.0, -30.0, 2.0, 90.0, 8.0}, {135.0, 55.0}},
       {"earth_ground_sunset", "earth", {20.0, -30.0, 2.0, 135.0, 3.0}, {135.0, 1.0}},

@@ -53,7 +53,7 @@ struct TerrainSettings {
   bool patches = true;       // per-pixel detail from the patch textures
   PatchSettings patchSettings;
   bool wireframe = false;           // debug: triangle edges only (no patch textures, no water)
-  double bandWavelengthM = 6000.0;  // scale of the noise that frays colour-band edges
+  double bandWavelengthM = 40000.0;  // largest octave of the colour noise (vegetation, frayed band edges)
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
   double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
   bool water = true;          // draw the water sphere (planets with an ocean)

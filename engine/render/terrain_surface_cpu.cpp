@@ -31,8 +31,8 @@ glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPla
   const glm::vec3 nadir = glm::vec3(frame.localToPlanet[2]);
   const glm::vec3 directionPlanet = nadir + offsetPlanet / radius;
   gpu::NoiseParams band{};
-  band.type = gpu::kNoiseSimplex;
-  band.octaves = 1u;
+  band.type = gpu::kNoiseFbm;
+  band.octaves = 4u;
   band.hash = gpu::kNoiseHashFast;
   band.seedMix = 0x5bd1e995u;
   band.lacunarity = 2.0f;
