@@ -108,6 +108,15 @@ void main() {
   vec3 sun = sky.sunLocal.xyz;
   float muS = sun.z;
   float nu = dot(dir, sun);
+  // The sea is drawn on the mesh's flat triangles, up to a few hundred metres below the sphere
+  // in their middles (chord sag) on the coarse rings seen from orbit; ending the march there
+  // put a faint grid of the triangles into the haze. The march ends at the sea's sphere when
+  // that is nearer than what was drawn.
+  float seaLevel = sky.extent.w;
+  if (geometry && h > seaLevel) {
+    vec2 sea = raySphere(R, h, mu, seaLevel);
+    if (sea.x >= 0.0f && sea.x < tGeometry) tGeometry = sea.x;
+  }
   vec2 ground = raySphere(R, h, mu, 0.0f);
   bool seesGround = mu < 0.0f && ground.x >= 0.0f;
   float tEnd = geometry ? tGeometry : (seesGround ? ground.x : kInfinity);
