@@ -37,6 +37,15 @@ CommandResult planet(const std::string& args, const std::string& input = "") {
   return run;
 }
 
+// planet with the Vulkan loader pointed at a driver list that does not exist.
+CommandResult planetWithoutDriver(const std::string& args, const std::string& input) {
+  CommandResult run;
+  static_cast<planet::test::ShellRun&>(run) = planet::test::runShell(
+      std::string("VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json ") + PLANET_EXE, args,
+      input, tempDir());
+  return run;
+}
+
 size_t lineCount(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
 
 bool noDevice(const CommandResult& run) { return run.err.find("no Vulkan") != std::string::npos; }
@@ -112,8 +121,10 @@ std::string expand(std::string text, const std::string& out) {
 // Every front door of every subcommand (issue 7): empty, NaN/Inf, negative, wrong type and
 // absurd values, unknown flags, and files that are binary, not UTF-8, truncated, empty, too
 // large or a directory. Each gives one line on stderr naming the value, nothing on stdout, a
-// non-zero exit within a second (no Vulkan work before the check), and no file in the folder
-// `{out}` that outputs point into.
+// non-zero exit, and no file in the folder `{out}` that outputs point into. The cases run with
+// no Vulkan driver to be found: a command that reached for the device before checking its input
+// would fail with the driver's error instead of the expected one (a time limit said the same
+// but failed under ASan on a loaded machine).
 TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
   struct Case {
     std::string args, input, mustContain;
@@ -367,12 +378,11 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
     const std::filesystem::path out = tempDir() / ("out" + std::to_string(index++));
     std::filesystem::create_directories(out);
     const std::string args = expand(c.args, out.string());
-    CommandResult run = planet(args, c.input);
+    const CommandResult run = planetWithoutDriver(args, c.input);
     EXPECT_EQ(run.exitCode, c.exitCode) << args << "\n" << run.err;
     EXPECT_EQ(lineCount(run.err), 1u) << args << "\n" << run.err;
     EXPECT_NE(run.err.find(expand(c.mustContain, out.string())), std::string::npos) << args << "\n" << run.err;
     EXPECT_EQ(run.out, "") << args << ": nothing may be printed on an error";
-    EXPECT_LT(run.seconds, 1.0) << args << ": an error must come before any Vulkan work";
     EXPECT_TRUE(std::filesystem::is_empty(out)) << args << ": left a file behind";
     std::filesystem::remove_all(out);
   }
