@@ -14,6 +14,10 @@
 
 #include "vk/context.h"
 
+namespace planet {
+struct PlanetDescription;
+}
+
 namespace planet::cli {
 
 // Exit codes: 0 success, 1 failure (error, validation message, or out-of-tolerance result),
@@ -60,6 +64,10 @@ void checkNumbersAsText(CLI::App& command);
 // ending in '/' is a UsageError; a missing or unwritable parent directory a planet::Error
 // ("cannot write 'PATH': reason", as writing it would say).
 void checkOutputFile(const std::string& option, const std::string& path);
+
+// --seed S (render, height, export): every layer's seed becomes (seed + S) mod 2^32, another
+// planet of the same kind. An S above 4294967295 is a UsageError naming it.
+void applySeedOffset(PlanetDescription& planet, uint64_t seed);
 
 // A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
 // characters in the message (a newline inside a quoted argument) become '?', so that it stays
