@@ -1,6 +1,7 @@
 // planet export's engine (engine/export): heightmap pixels are the documented points at the
-// reference heights, the sidecar describes them, cube faces meet along their edges; an image
-// and its sidecar are written together or not.
+// reference heights, the sidecar describes them, cube faces meet along their edges; meshes are
+// the documented grids with outward normals and front faces, and tiles agree on their borders;
+// glTF, GLB and OBJ carry the same mesh; an image and its sidecar are written together or not.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -16,6 +17,8 @@
 
 #include "core/file.h"
 #include "export/heightmap_export.h"
+#include "export/mesh_files.h"
+#include "export/region_mesh.h"
 #include "planet/terrain_height.h"
 #include "render/patch_layout.h"
 #include "test_support.h"
@@ -278,6 +281,214 @@ TEST(ExportHeightmap, TheImageAndItsSidecarAreWrittenTogetherOrNotAtAll) {
   EXPECT_FALSE(fs::exists(dir / "a.txt"));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
   fs::remove_all(dir);
+}
+
+// ---- Meshes ----------------------------------------------------------------------------------
+
+// A 0.1 x 0.1 degree region in the Alps (about 11 x 8 km), 9 x 9 vertices.
+MeshSpec alpsSpec(uint32_t n = 9) { return {{45.0, 7.0, 45.1, 7.1}, n, false}; }
+
+glm::dvec3 planetPoint(const RegionMesh& mesh, const glm::vec3& p) {
+  return mesh.frame.originM + double(p.x) * mesh.frame.east + double(p.y) * mesh.frame.up +
+         double(p.z) * mesh.frame.south;
+}
+
+glm::dvec3 planetVector(const RegionMesh& mesh, const glm::vec3& v) {
+  return double(v.x) * mesh.frame.east + double(v.y) * mesh.frame.up + double(v.z) * mesh.frame.south;
+}
+
+TEST(ExportMesh, VerticesAreTheDocumentedGridAtTheReferenceHeights) {
+  const MeshSpec spec = alpsSpec();
+  const RegionMesh mesh = computeRegionMesh(earth(), spec, 2);
+  ASSERT_EQ(mesh.positions.size(), 81u);
+  ASSERT_EQ(mesh.normals.size(), 81u);
+  // The frame: right-handed, east/up/south at the centre, origin on the radius sphere under it.
+  const glm::dvec3 up = directionFromLatLon(45.05, 7.05);
+  EXPECT_LT(glm::length(mesh.frame.up - up), 1e-15);
+  EXPECT_LT(glm::length(mesh.frame.originM - earth().radiusM * up), 1e-6);
+  EXPECT_LT(glm::length(glm::cross(mesh.frame.east, mesh.frame.up) - mesh.frame.south), 1e-15);
+  EXPECT_GT(glm::dot(mesh.frame.east,
+                     glm::dvec3(-std::sin(7.05 * std::numbers::pi / 180), std::cos(7.05 * std::numbers::pi / 180), 0)),
+            0.999999);
+  EXPECT_LT(mesh.frame.south.z, 0.0);
+  double lowest = 1e9, highest = -1e9;
+  for (uint32_t j = 0; j < 9; ++j)
+    for (uint32_t i = 0; i < 9; ++i) {
+      const glm::dvec3 point = planetPoint(mesh, mesh.positions[j * 9 + i]);
+      // Row j from north to south, column i from west to east, corners on the region's corners.
+      const double latitude = 45.1 + (45.0 - 45.1) * j / 8.0, longitude = 7.0 + (7.1 - 7.0) * i / 8.0;
+      EXPECT_LT(angleBetween(glm::normalize(point), directionFromLatLon(latitude, longitude)) * earth().radiusM, 0.002)
+          << i << "," << j;
+      const double height = glm::length(point) - earth().radiusM;
+      ASSERT_NEAR(height, terrainHeightM(earth(), glm::normalize(point)), 0.01) << i << "," << j;
+      lowest = std::min(lowest, height);
+      highest = std::max(highest, height);
+    }
+  EXPECT_NEAR(mesh.minHeightM, lowest, 0.01);
+  EXPECT_NEAR(mesh.maxHeightM, highest, 0.01);
+  // North-west first, south-east last.
+  EXPECT_LT(mesh.positions.front().x, 0.0f);
+  EXPECT_LT(mesh.positions.front().z, 0.0f);
+  EXPECT_GT(mesh.positions.back().x, 0.0f);
+  EXPECT_GT(mesh.positions.back().z, 0.0f);
+}
+
+TEST(ExportMesh, TrianglesAreTwoPerCellFacingUpAndNormalsAreUnitAndOutward) {
+  const uint32_t n = 17;
+  const RegionMesh mesh = computeRegionMesh(earth(), alpsSpec(n));
+  ASSERT_EQ(mesh.indices.size(), 6u * (n - 1) * (n - 1));
+  std::vector<glm::dvec3> faceNormalSum(mesh.positions.size(), glm::dvec3(0.0));
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    for (int k = 0; k < 3; ++k) ASSERT_LT(mesh.indices[t + k], n * n);
+    const glm::dvec3 a = planetPoint(mesh, mesh.positions[mesh.indices[t]]);
+    const glm::dvec3 b = planetPoint(mesh, mesh.positions[mesh.indices[t + 1]]);
+    const glm::dvec3 c = planetPoint(mesh, mesh.positions[mesh.indices[t + 2]]);
+    const glm::dvec3 geometric = glm::cross(b - a, c - a);
+    // Counter-clockwise seen from above: the right-hand normal points away from the centre.
+    ASSERT_GT(glm::dot(glm::normalize(geometric), glm::normalize(a)), 0.5) << "triangle " << t / 3;
+    for (int k = 0; k < 3; ++k) faceNormalSum[mesh.indices[t + k]] += glm::normalize(geometric);
+  }
+  for (size_t v = 0; v < mesh.normals.size(); ++v) {
+    const glm::dvec3 normal = planetVector(mesh, mesh.normals[v]);
+    ASSERT_NEAR(glm::length(normal), 1.0, 1e-6) << v;
+    ASSERT_GT(glm::dot(normal, glm::normalize(planetPoint(mesh, mesh.positions[v]))), 0.5) << v;
+    // It follows the surface: close to the mean of the triangles around the vertex.
+    EXPECT_LT(angleBetween(normal, glm::normalize(faceNormalSum[v])), 10.0 * std::numbers::pi / 180.0) << v;
+  }
+}
+
+TEST(ExportMesh, TilesSharingABorderHaveTheSameBorderVerticesAndNormals) {
+  const RegionMesh west = computeRegionMesh(earth(), {{45.0, 7.0, 45.1, 7.05}, 9, false});
+  const RegionMesh east = computeRegionMesh(earth(), {{45.0, 7.05, 45.1, 7.1}, 9, false});
+  for (uint32_t j = 0; j < 9; ++j) {
+    const size_t w = j * 9 + 8, e = j * 9;
+    EXPECT_LT(glm::length(planetPoint(west, west.positions[w]) - planetPoint(east, east.positions[e])), 0.002) << j;
+    EXPECT_LT(glm::length(planetVector(west, west.normals[w]) - planetVector(east, east.normals[e])), 1e-5) << j;
+  }
+}
+
+TEST(ExportMesh, APoleRowHasRadialNormalsAndARegionMayCrossTheAntimeridian) {
+  const RegionMesh polar = computeRegionMesh(earth(), {{80.0, 0.0, 90.0, 360.0}, 5, false});
+  // (Their heights need not agree: the reference itself differs by metres between longitudes
+  // 1 mm from the pole, where the planes x = y and x = z through the noise origin meet.)
+  for (uint32_t i = 0; i < 5; ++i) {
+    EXPECT_LT(angleBetween(planetVector(polar, polar.normals[i]), glm::dvec3(0, 0, 1)), 1e-6) << i;
+    EXPECT_LT(angleBetween(planetPoint(polar, polar.positions[i]), glm::dvec3(0, 0, 1)), 1e-8)
+        << i;  // float offsets of a 1,100 km region
+  }
+  const RegionMesh across = computeRegionMesh(earth(), {{-1.0, 179.5, 1.0, 180.5}, 3, false});
+  EXPECT_LT(angleBetween(glm::normalize(planetPoint(across, across.positions[4])), directionFromLatLon(0, -180)), 1e-9);
+}
+
+TEST(ExportMesh, FilteredHeightsUseTheCellSize) {
+  MeshSpec spec = alpsSpec(5);
+  spec.filtered = true;
+  const RegionExtentM extent = regionExtentM(earth().radiusM, spec.region);
+  EXPECT_NEAR(extent.northSouth, earth().radiusM * 0.1 * std::numbers::pi / 180.0, 1e-6);
+  EXPECT_NEAR(extent.eastWest, extent.northSouth * std::cos(45.0 * std::numbers::pi / 180.0), 1e-6);
+  EXPECT_DOUBLE_EQ(meshSpacingM(earth(), spec), extent.northSouth / 4.0);
+  const RegionMesh mesh = computeRegionMesh(earth(), spec);
+  EXPECT_EQ(mesh.spacingM, meshSpacingM(earth(), spec));
+  const glm::dvec3 point = planetPoint(mesh, mesh.positions[12]);
+  EXPECT_NEAR(glm::length(point) - earth().radiusM, terrainHeightM(earth(), glm::normalize(point), mesh.spacingM),
+              0.01);
+}
+
+TEST(ExportMesh, BadRegionsAndResolutionsAreRefusedNamingTheValue) {
+  auto regionError = [](MeshRegion r) { return errorOf([&] { validateMeshRegion(r); }); };
+  EXPECT_EQ(regionError({0, 0, 95, 1}), "region latitude 95 is outside [-90, 90] degrees");
+  EXPECT_EQ(regionError({5, 0, 1, 1}), "region south latitude 5 must be less than north latitude 1");
+  EXPECT_EQ(regionError({0, 170, 1, -170}),
+            "region west longitude 170 must be less than east longitude -170 (to cross 180 degrees give an east "
+            "longitude above 180)");
+  EXPECT_EQ(regionError({0, -200, 1, 200}), "region spans 400 degrees of longitude, at most 360");
+  EXPECT_EQ(regionError({0, 0, 1, 400}), "region longitude 400 is outside [-360, 360] degrees");
+  EXPECT_EQ(regionError({0, std::nan(""), 1, 1}), "region coordinates must be finite, got nan");
+  EXPECT_EQ(errorOf([] { computeRegionMesh(earth(), alpsSpec(1)); }),
+            "mesh resolution must be in 2..2048 vertices per side, got 1");
+  EXPECT_EQ(errorOf([] { computeRegionMesh(earth(), alpsSpec(2049)); }),
+            "mesh resolution must be in 2..2048 vertices per side, got 2049");
+}
+
+// ---- Mesh files ------------------------------------------------------------------------------
+
+uint32_t littleEndian32(const std::string& bytes, size_t at) {
+  uint32_t v = 0;
+  for (int k = 3; k >= 0; --k) v = (v << 8) | uint8_t(bytes[at + size_t(k)]);
+  return v;
+}
+
+std::string decodeBase64(std::string_view text) {
+  auto value = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    return c == '+' ? 62 : c == '/' ? 63 : -1;
+  };
+  std::string out;
+  uint32_t group = 0;
+  int bits = 0;
+  for (char c : text) {
+    if (c == '=') break;
+    group = (group << 6) | uint32_t(value(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(char((group >> bits) & 0xFFu));
+    }
+  }
+  return out;
+}
+
+TEST(ExportMeshFiles, GlbHoldsTheGltfsJsonAndBufferInAlignedChunks) {
+  const RegionMesh mesh = computeRegionMesh(earth(), alpsSpec(5));
+  const nlohmann::ordered_json metadata = meshMetadata(earth(), {"earth", 0}, mesh);
+  const std::string glb = encodeGltf(mesh, metadata, true);
+  nlohmann::json gltf = nlohmann::json::parse(encodeGltf(mesh, metadata, false));
+  // Header: magic "glTF", version 2, the total length.
+  ASSERT_GE(glb.size(), 28u);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(littleEndian32(glb, 4), 2u);
+  EXPECT_EQ(littleEndian32(glb, 8), glb.size());
+  const uint32_t jsonLength = littleEndian32(glb, 12);
+  EXPECT_EQ(glb.substr(16, 4), "JSON");
+  EXPECT_EQ(jsonLength % 4, 0u);
+  const size_t binAt = 20 + jsonLength;
+  const uint32_t binLength = littleEndian32(glb, binAt);
+  EXPECT_EQ(glb.substr(binAt + 4, 4), std::string("BIN\0", 4));
+  EXPECT_EQ(binLength % 4, 0u);
+  EXPECT_EQ(binAt + 8 + binLength, glb.size());
+  nlohmann::json fromGlb = nlohmann::json::parse(glb.substr(20, jsonLength));
+  // The same document but for the buffer's URI, and the same bytes in the buffer.
+  const std::string uri = gltf["buffers"][0]["uri"].get<std::string>();
+  const std::string prefix = "data:application/octet-stream;base64,";
+  ASSERT_EQ(uri.substr(0, prefix.size()), prefix);
+  const std::string buffer = decodeBase64(std::string_view(uri).substr(prefix.size()));
+  EXPECT_EQ(buffer.size(), gltf["buffers"][0]["byteLength"].get<size_t>());
+  EXPECT_EQ(glb.substr(binAt + 8, buffer.size()), buffer);
+  gltf["buffers"][0].erase("uri");
+  EXPECT_EQ(fromGlb, gltf);
+  // The metadata is the node's extras.
+  EXPECT_EQ(gltf["nodes"][0]["extras"], nlohmann::json::parse(metadata.dump()));
+  EXPECT_EQ(gltf["nodes"][0].count("translation"), 0u);
+}
+
+TEST(ExportMeshFiles, ObjHeaderCarriesTheFrameInDoubleAndTheMetadata) {
+  const RegionMesh mesh = computeRegionMesh(earth(), alpsSpec(3));
+  const nlohmann::ordered_json metadata = meshMetadata(earth(), {"earth", 7}, mesh);
+  const std::string obj = encodeObj(mesh, metadata);
+  auto lineAfter = [&](const std::string& key) {
+    const size_t at = obj.find("\n# " + key + " ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return obj.substr(at + 4 + key.size(), obj.find('\n', at + 1) - at - 4 - key.size());
+  };
+  glm::dvec3 origin;
+  std::sscanf(lineAfter("origin_m").c_str(), "%lf %lf %lf", &origin.x, &origin.y, &origin.z);
+  EXPECT_EQ(origin, mesh.frame.originM);  // 17 significant digits: the double itself
+  EXPECT_EQ(nlohmann::json::parse(lineAfter("metadata")), nlohmann::json::parse(metadata.dump()));
+  EXPECT_EQ(metadata["source"]["seed_offset"], 7);
+  EXPECT_EQ(std::count(obj.begin(), obj.end(), '\n'), 9 + 9 + 9 + 8);  // header + o, v, vn, f
+  EXPECT_NE(obj.find("\nf 1//1 4//4 5//5\n"), std::string::npos) << "north-west, south-west, south-east, 1-based";
 }
 
 }  // namespace
