@@ -87,6 +87,7 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& bench, const GlobalOptions& global,
                                                                      int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addExportCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 
