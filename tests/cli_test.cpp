@@ -53,7 +53,7 @@ bool noDevice(const CommandResult& run) { return run.err.find("no Vulkan") != st
 TEST(Cli, HelpListsTheSubcommands) {
   CommandResult run = planet("--help");
   EXPECT_EQ(run.exitCode, 0);
-  for (const char* cmd : {"noise", "validate", "bench", "height", "render", "view"})
+  for (const char* cmd : {"noise", "validate", "bench", "height", "export", "render", "view"})
     EXPECT_NE(run.out.find(cmd), std::string::npos) << cmd;
   CommandResult sub = planet("noise --help");
   EXPECT_EQ(sub.exitCode, 0);
@@ -63,6 +63,16 @@ TEST(Cli, HelpListsTheSubcommands) {
   EXPECT_EQ(view.exitCode, 0);
   for (const char* text : {"--frames", "--screenshot", "--path", "--quality", "--vsync", "F1", "F12", "Tab"})
     EXPECT_NE(view.out.find(text), std::string::npos) << text << "\n" << view.out;
+  // The export commands name their formats and the sidecar.
+  CommandResult exportHelp = planet("export --help");
+  EXPECT_EQ(exportHelp.exitCode, 0);
+  for (const char* text : {"heightmap", "mesh"}) EXPECT_NE(exportHelp.out.find(text), std::string::npos) << text;
+  CommandResult heightmap = planet("export heightmap --help");
+  for (const char* text : {"--projection", "equirect", "cubemap", "png16", "raw", "--size", "--filtered", "FILE.json"})
+    EXPECT_NE(heightmap.out.find(text), std::string::npos) << text << "\n" << heightmap.out;
+  CommandResult mesh = planet("export mesh --help");
+  for (const char* text : {"--region", "--resolution", "gltf", "glb", "obj", "30m"})
+    EXPECT_NE(mesh.out.find(text), std::string::npos) << text << "\n" << mesh.out;
 }
 
 TEST(Cli, NoisePrintsOneValuePerPointWithNineDigits) {
@@ -282,6 +292,83 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"height --at 1,2 --preset {h}/deep.toml", "", "deep.toml:1: a key path of 40001 parts nests too deep"},
       {"height --at 1,2 --preset {h}/huge.toml", "", "huge.toml: too large"},
       {"height --at 1,2 --preset {h}/missing.toml", "", "missing.toml': No such file or directory"},
+      // planet export (no Vulkan at all; every check before the heights are evaluated)
+      {"export", "", "a command is required after 'planet export': heightmap, mesh"},
+      {"export heightmap", "", "--out is required"},
+      {"export heightmap --out {out}/h.png --size 0", "", "--size 0 is outside 1x1 .. 16384x8192 for an equirect map"},
+      {"export heightmap --out {out}/h.png --size 20000x10000", "", "--size 20000x10000 is outside 1x1 .. 16384x8192"},
+      {"export heightmap --out {out}/h.png --size 16384x8193", "", "--size 16384x8193 is outside 1x1 .. 16384x8192"},
+      {"export heightmap --out {out}/h.png --size ''", "", "--size expects W or WxH in pixels, got ''"},
+      {"export heightmap --out {out}/h.png --size -5", "", "--size expects W or WxH in pixels, got '-5'"},
+      {"export heightmap --out {out}/h.png --size 1e3", "", "--size expects W or WxH in pixels, got '1e3'"},
+      {"export heightmap --out {out}/h.png --size 64x", "", "--size expects W or WxH in pixels, got '64x'"},
+      {"export heightmap --out {out}/h.png --size 99999999999999999999", "", "got '99999999999999999999'"},
+      {"export heightmap --out {out}/h.png --projection cubemap --size 5000", "",
+       "--size 5000 is outside 1 .. 4096 for a cube-map face"},
+      {"export heightmap --out {out}/h.png --projection cubemap --size 64x32", "",
+       "--size 64x32 is not square: a cube-map face is N x N"},
+      {"export heightmap --out {out}/h.png --projection cubemap --size abc", "",
+       "--size expects the face size N (or NxN) in pixels, got 'abc'"},
+      {"export heightmap --out {out}/h.png --projection mercator", "",
+       "unknown projection 'mercator' (expected equirect or cubemap)"},
+      {"export heightmap --out {out}/h.png --projection ''", "", "unknown projection ''"},
+      {"export heightmap --out {out}/h.tif", "",
+       "--format not given and --out '{out}/h.tif' does not end in .png or .raw"},
+      {"export heightmap --out {out}/h.png --format jpeg", "", "unknown heightmap format 'jpeg'"},
+      {"export heightmap --out {out}/h.png --format raw", "",
+       "--format raw does not match --out '{out}/h.png' (a file of that name is png16)"},
+      {"export heightmap --out ''", "", "--out must name a file"},
+      {"export heightmap --out {out}", "", "--out must name a file, got '"},
+      {"export heightmap --out {out}/", "", "--out must name a file, got '"},
+      {"export heightmap --out {out}/no_such_dir/h.png", "", "cannot write '{out}/no_such_dir/h.png'", 1},
+      {"export heightmap --out {out}/h.png --threads 1000", "",
+       "--threads must be in 0..256 (0: one per core), got 1000"},
+      {"export heightmap --out {out}/h.png --threads -1", "", "--threads must not be negative, got -1"},
+      {"export heightmap --out {out}/h.png --threads ''", "", "--threads expects a whole number, got ''"},
+      {"export heightmap --out {out}/h.png --seed 99999999999", "", "--seed must be in 0..4294967295, got 99999999999"},
+      {"export heightmap --out {out}/h.png --seed -1", "", "--seed must not be negative, got -1"},
+      {"export heightmap --out {out}/h.png --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"export heightmap --out {out}/h.png --preset {h}/garbage.bin", "", "garbage.bin:1:1: not"},
+      {"export heightmap --out {out}/h.png --preset {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"export heightmap --out {out}/h.png --preset {h}/huge.toml", "", "huge.toml: too large"},
+      {"export heightmap --out {out}/h.png --frobnicate", "", "--frobnicate"},
+      {"export mesh --out {out}/m.obj", "", "--region is required"},
+      {"export mesh --region 1,2,3 --out {out}/m.obj", "",
+       "--region expects SOUTH,WEST,NORTH,EAST in degrees, got '1,2,3'"},
+      {"export mesh --region 1,2,3,4,5 --out {out}/m.obj", "", "got '1,2,3,4,5'"},
+      {"export mesh --region '' --out {out}/m.obj", "", "--region expects SOUTH,WEST,NORTH,EAST in degrees, got ''"},
+      {"export mesh --region nan,0,1,1 --out {out}/m.obj", "", "got 'nan,0,1,1'"},
+      {"export mesh --region 0,0,1,inf --out {out}/m.obj", "", "got '0,0,1,inf'"},
+      {"export mesh --region 0,0,95,1 --out {out}/m.obj", "",
+       "--region 0,0,95,1: region latitude 95 is outside [-90, 90] degrees"},
+      {"export mesh --region 5,0,1,1 --out {out}/m.obj", "",
+       "region south latitude 5 must be less than north latitude 1"},
+      {"export mesh --region 0,170,1,-170 --out {out}/m.obj", "",
+       "region west longitude 170 must be less than east longitude -170"},
+      {"export mesh --region 0,-200,1,200 --out {out}/m.obj", "", "region spans 400 degrees of longitude, at most 360"},
+      {"export mesh --region 0,0,1,400 --out {out}/m.obj", "", "region longitude 400 is outside [-360, 360] degrees"},
+      {"export mesh --region 0,0,1,1 --resolution 1 --out {out}/m.obj", "",
+       "--resolution 1 is outside 2..2048 vertices per side"},
+      {"export mesh --region 0,0,1,1 --resolution 5000 --out {out}/m.obj", "", "--resolution 5000 is outside 2..2048"},
+      {"export mesh --region 0,0,1,1 --resolution 1m --out {out}/m.obj", "",
+       "--resolution 1m needs 111196 vertices per side for this region, at most 2048"},
+      {"export mesh --region 0,0,1,1 --resolution -3m --out {out}/m.obj", "",
+       "--resolution expects vertices per side N or a spacing in metres like 30m, got '-3m'"},
+      {"export mesh --region 0,0,1,1 --resolution 0m --out {out}/m.obj", "", "got '0m'"},
+      {"export mesh --region 0,0,1,1 --resolution '' --out {out}/m.obj", "", "got ''"},
+      {"export mesh --region 0,0,1,1 --resolution abc --out {out}/m.obj", "", "got 'abc'"},
+      {"export mesh --region 0,0,1,1 --out {out}/m.stl", "",
+       "--format not given and --out '{out}/m.stl' does not end in .gltf, .glb or .obj"},
+      {"export mesh --region 0,0,1,1 --out {out}/m.obj --format fbx", "", "unknown mesh format 'fbx'"},
+      {"export mesh --region 0,0,1,1 --out {out}/m.obj --format gltf", "", "--format gltf does not match --out"},
+      {"export mesh --region 0,0,1,1 --out ''", "", "--out must name a file"},
+      {"export mesh --region 0,0,1,1 --out {out}/", "", "--out must name a file, got '"},
+      {"export mesh --region 0,0,1,1 --out {out}/no_such_dir/m.glb", "", "cannot write '{out}/no_such_dir/m.glb'", 1},
+      {"export mesh --region 0,0,1,1 --out {out}/m.obj --threads 257", "", "--threads must be in 0..256"},
+      {"export mesh --region 0,0,1,1 --out {out}/m.obj --preset {h}/truncated.toml", "", "truncated.toml:2:"},
+      {"export mesh --region 0,0,1,1 --out {out}/m.obj --seed 4294967296", "", "--seed must be in 0..4294967295"},
+      {"height --at 1,2 --seed 4294967296", "", "--seed must be in 0..4294967295, got 4294967296"},
+      {"height --at 1,2 --seed -1", "", "--seed must not be negative, got -1"},
       // planet render
       {"render --size 0x0 --out {out}/r.png", "", "--size 0x0 is outside 1x1 .. 8192x8192"},
       {"render --size 100000x100000 --out {out}/r.png", "", "--size 100000x100000 is outside"},

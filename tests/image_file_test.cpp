@@ -8,6 +8,7 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -247,6 +248,66 @@ TEST_F(ImageFile, ReadPngRejects16BitFiles) {
   std::string wide = path("wide.png");
   writeBytes(wide, handMadePng(1, 1, 16, 2, {0, 1, 2, 3, 4, 5, 6}));
   EXPECT_EQ(errorOf([&] { readPng(wide); }), "cannot read '" + wide + "': 16-bit PNG (only 8-bit is supported)");
+}
+
+// Every 16-bit value, in rows that exercise each PNG filter (smooth ramps, noise, constant rows).
+Grey16Image pattern16(uint32_t width, uint32_t height) {
+  Grey16Image image{width, height, std::vector<uint16_t>(size_t(width) * height)};
+  uint32_t state = 7;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    state = state * 1664525u + 1013904223u;
+    const size_t row = i / width;
+    image.pixels[i] = row % 3 == 0 ? uint16_t(i) : row % 3 == 1 ? uint16_t(state >> 16) : uint16_t(row * 257);
+  }
+  return image;
+}
+
+TEST_F(ImageFile, Png16RoundTripKeepsEveryValueAndIsDeterministic) {
+  for (auto [width, height] : {std::pair{256u, 256u}, {1u, 1u}, {3u, 7u}, {1000u, 3u}}) {
+    SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
+    const Grey16Image image = pattern16(width, height);
+    const std::vector<uint8_t> png = encodePng16(image);
+    EXPECT_EQ(encodePng16(image), png);
+    writeBytes(path("grey16.png"), png);
+    const Grey16Image back = readPng16(path("grey16.png"));
+    EXPECT_EQ(back.width, width);
+    EXPECT_EQ(back.height, height);
+    EXPECT_EQ(back.pixels, image.pixels);
+  }
+  // Each of the 65,536 values once.
+  Grey16Image every{256, 256, std::vector<uint16_t>(65536)};
+  for (size_t i = 0; i < every.pixels.size(); ++i) every.pixels[i] = uint16_t(i * 40503u);  // odd: a permutation
+  writeBytes(path("every.png"), encodePng16(every));
+  EXPECT_EQ(readPng16(path("every.png")).pixels, every.pixels);
+  EXPECT_EQ(std::set<uint16_t>(every.pixels.begin(), every.pixels.end()).size(), 65536u);
+}
+
+TEST_F(ImageFile, Png16IsGreySixteenBitWithBigEndianSamples) {
+  // A 2x1 image: the IHDR says 16-bit grey, and the (unfiltered or filtered) data decodes to
+  // big-endian samples, as every other PNG reader expects (stb reads them back above).
+  const std::vector<uint8_t> png = encodePng16({2, 1, {0x1234, 0xABCD}});
+  ASSERT_GT(png.size(), 33u);
+  EXPECT_EQ(std::string(png.begin() + 12, png.begin() + 16), "IHDR");
+  EXPECT_EQ(png[24], 16);  // bit depth
+  EXPECT_EQ(png[25], 0);   // colour type grey
+  writeBytes(path("two.png"), png);
+  EXPECT_EQ(readPng16(path("two.png")).pixels, (std::vector<uint16_t>{0x1234, 0xABCD}));
+  // The 8-bit reader still refuses it rather than dropping the low bytes.
+  EXPECT_EQ(errorOf([&] { readPng(path("two.png")); }),
+            "cannot read '" + path("two.png") + "': 16-bit PNG (only 8-bit is supported)");
+}
+
+TEST_F(ImageFile, ReadPng16RejectsEightBitAndColourFilesAndEncodePng16BadImages) {
+  writePng(path("rgba8.png"), patternImage(2, 2));
+  EXPECT_EQ(errorOf([&] { readPng16(path("rgba8.png")); }),
+            "cannot read '" + path("rgba8.png") + "': 8-bit PNG (a 16-bit grey heightmap was expected)");
+  writeBytes(path("rgb16.png"), handMadePng(1, 1, 16, 2, {0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(errorOf([&] { readPng16(path("rgb16.png")); }),
+            "cannot read '" + path("rgb16.png") + "': 3-channel PNG (a 16-bit grey heightmap was expected)");
+  EXPECT_EQ(errorOf([&] { readPng16(path("missing.png")); }),
+            "cannot read '" + path("missing.png") + "': No such file or directory");
+  EXPECT_EQ(errorOf([&] { encodePng16({0, 0, {}}); }), "cannot encode PNG: image is empty (0x0)");
+  EXPECT_EQ(errorOf([&] { encodePng16({2, 2, {1, 2, 3}}); }), "cannot encode PNG: image of 2x2 needs 4 values, has 3");
 }
 
 TEST(ImagePsnr, IdenticalImagesGiveInfinity) {

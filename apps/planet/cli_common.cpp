@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "planet/planet_description.h"
 #include "render/renderer.h"
 
 namespace planet::cli {
@@ -128,6 +129,12 @@ void checkOutputFile(const std::string& option, const std::string& path) {
   else if (::access(directory.c_str(), W_OK | X_OK) != 0)
     error = errno;
   if (error != 0) throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(error)));
+}
+
+void applySeedOffset(PlanetDescription& planet, uint64_t seed) {
+  if (seed > 0xffffffffull) throw UsageError(fmt::format("--seed must be in 0..4294967295, got {}", seed));
+  for (NoiseLayer& layer : planet.layers)
+    layer.noise.seed = uint32_t((uint64_t(layer.noise.seed) + seed) & 0xffffffffu);
 }
 
 int finishWithValidation(const vk::Context& context, int exitCode) {

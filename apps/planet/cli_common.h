@@ -14,6 +14,10 @@
 
 #include "vk/context.h"
 
+namespace planet {
+struct PlanetDescription;
+}
+
 namespace planet::cli {
 
 // Exit codes: 0 success, 1 failure (error, validation message, or out-of-tolerance result),
@@ -61,6 +65,10 @@ void checkNumbersAsText(CLI::App& command);
 // ("cannot write 'PATH': reason", as writing it would say).
 void checkOutputFile(const std::string& option, const std::string& path);
 
+// --seed S (render, height, export): every layer's seed becomes (seed + S) mod 2^32, another
+// planet of the same kind. An S above 4294967295 is a UsageError naming it.
+void applySeedOffset(PlanetDescription& planet, uint64_t seed);
+
 // A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
 // characters in the message (a newline inside a quoted argument) become '?', so that it stays
 // one line whatever it quotes.
@@ -79,6 +87,7 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& bench, const GlobalOptions& global,
                                                                      int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+void addExportCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 

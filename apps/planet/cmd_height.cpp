@@ -2,6 +2,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -18,6 +19,7 @@ constexpr size_t kMaxHeightSamples = 1'000'000;
 
 struct HeightCommand {
   std::string preset{kDefaultPresetName};
+  std::optional<uint64_t> seed;
   std::string at;
   double bearingDeg = 0.0;
   double stepM = 1.0;
@@ -76,6 +78,7 @@ int runHeight(const GlobalOptions& global, const HeightCommand& cmd) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
+  if (cmd.seed) applySeedOffset(planet, *cmd.seed);
   int exitCode = 0;
   std::vector<double> heights = cmd.backend == "gpu"
                                     ? gpuHeights(global, planet, start, cmd, exitCode)
@@ -92,6 +95,7 @@ void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
       "height", "Terrain heights in metres above the radius sphere, one per line, along a great circle from --at");
   sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
       ->capture_default_str();
+  sub->add_option("--seed", cmd->seed, "Added to every layer's seed, as in planet render and planet export");
   sub->add_option("--at", cmd->at, "Start point LAT,LON in degrees")->required();
   sub->add_option("--bearing", cmd->bearingDeg, "Direction of the line, degrees clockwise from north")
       ->capture_default_str();

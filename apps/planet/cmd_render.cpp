@@ -30,12 +30,6 @@ struct RenderCommand {
   bool noWater = false;
 };
 
-// --seed S turns every layer's seed into (seed + S) mod 2^32: another planet of the same kind.
-void applySeed(PlanetDescription& planet, uint64_t seed) {
-  for (NoiseLayer& layer : planet.layers)
-    layer.noise.seed = uint32_t((uint64_t(layer.noise.seed) + seed) & 0xffffffffu);
-}
-
 int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::App& sub) {
   RenderSettings settings;
   parseSize(cmd.size, settings.width, settings.height);
@@ -51,8 +45,6 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.sky.clouds = !cmd.noClouds;
   settings.terrain.water = !cmd.noWater;
   checkOutputFile("--out", cmd.out);
-  if (cmd.seed && *cmd.seed > 0xffffffffull)
-    throw UsageError(fmt::format("--seed must be in 0..4294967295, got {}", *cmd.seed));
   PlanetDescription planet;
   CameraPose camera;
   SunPose sun;
@@ -64,7 +56,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  if (cmd.seed) applySeed(planet, *cmd.seed);
+  if (cmd.seed) applySeedOffset(planet, *cmd.seed);
 
   auto context = openContext(global);
   RenderResult result;

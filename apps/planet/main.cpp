@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   cli::addValidateCommand(app, global, exitCode);
   cli::addBenchCommand(app, global, exitCode);
   cli::addHeightCommand(app, global, exitCode);
+  cli::addExportCommand(app, exitCode);
   cli::addRenderCommand(app, global, exitCode);
   cli::addViewCommand(app, global, exitCode);
 

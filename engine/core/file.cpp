@@ -4,15 +4,21 @@
 #include <cstdio>
 #include <cstring>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/error.h"
 
 namespace planet {
 
-void writeFileAtomic(const std::string& path, std::string_view contents) {
+namespace {
+
+std::string temporaryName(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
+
+// Writes `contents` to the temporary twin of `path`; on failure removes it and throws.
+void writeTemporary(const std::string& path, std::string_view contents) {
   if (path.empty()) throw Error("output file name is empty");
-  std::string temp = path + ".tmp-" + std::to_string(::getpid());
+  const std::string temp = temporaryName(path);
   std::FILE* file = std::fopen(temp.c_str(), "wb");
   if (!file) throw Error("cannot write '" + path + "': " + std::strerror(errno));
   bool ok = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
@@ -22,10 +28,38 @@ void writeFileAtomic(const std::string& path, std::string_view contents) {
     std::remove(temp.c_str());
     throw Error("cannot write '" + path + "': " + std::strerror(writeErrno ? writeErrno : errno));
   }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    int renameErrno = errno;
-    std::remove(temp.c_str());
-    throw Error("cannot write '" + path + "': " + std::strerror(renameErrno));
+}
+
+}  // namespace
+
+void writeFileAtomic(const std::string& path, std::string_view contents) {
+  const FileContents file{path, contents};
+  writeFilesAtomic({&file, 1});
+}
+
+void writeFilesAtomic(std::span<const FileContents> files) {
+  size_t written = 0;
+  try {
+    for (; written < files.size(); ++written) writeTemporary(files[written].path, files[written].contents);
+  } catch (const Error&) {
+    for (size_t i = 0; i < written; ++i) std::remove(temporaryName(files[i].path).c_str());
+    throw;
+  }
+  // A directory in a target's place would fail its rename after earlier files were replaced.
+  for (const FileContents& file : files) {
+    struct stat info {};
+    if (::stat(file.path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+      for (const FileContents& f : files) std::remove(temporaryName(f.path).c_str());
+      throw Error("cannot write '" + file.path + "': " + std::strerror(EISDIR));
+    }
+  }
+  for (size_t i = 0; i < files.size(); ++i) {
+    const std::string temp = temporaryName(files[i].path);
+    if (std::rename(temp.c_str(), files[i].path.c_str()) != 0) {
+      int renameErrno = errno;
+      for (size_t j = i; j < files.size(); ++j) std::remove(temporaryName(files[j].path).c_str());
+      throw Error("cannot write '" + files[i].path + "': " + std::strerror(renameErrno));
+    }
   }
 }
 

@@ -1,5 +1,7 @@
 // 8-bit RGBA images as PNG files, and the comparisons golden-image tests need (PSNR, a
-// difference picture). PNG encoding and decoding are stb_image_write / stb_image.
+// difference picture); 16-bit grey PNG files for heightmaps. PNG encoding and decoding are
+// stb_image_write / stb_image, except the 16-bit encoder (stb writes 8 bits only), which
+// frames stb's deflate in PNG chunks itself.
 #pragma once
 
 #include <cstdint>
@@ -26,6 +28,22 @@ void writePng(const std::string& path, const Rgba8Image& image);
 // Throws planet::Error naming the path for a missing or unreadable file, a file that is not a
 // PNG, a truncated or corrupt one, and a 16-bit one (it would not round-trip exactly).
 Rgba8Image readPng(const std::string& path);
+
+// One 16-bit grey channel, row-major, top row first: width * height values.
+struct Grey16Image {
+  uint32_t width = 0, height = 0;
+  std::vector<uint16_t> pixels;
+};
+
+// The PNG bytes of `image` (colour type 0, bit depth 16: samples big-endian in the file, as
+// PNG requires). Deterministic like encodePng. Throws planet::Error when the image is empty,
+// too large (a filtered row set over 2^31 bytes) or its pixel count does not match its size.
+std::vector<uint8_t> encodePng16(const Grey16Image& image);
+
+// Reads a 16-bit grey PNG, such as encodePng16 writes. Throws planet::Error naming the path for
+// a missing, unreadable, truncated or corrupt file, a file that is not a PNG, and a PNG of
+// another bit depth or with more than one channel (it would not hold the same values).
+Grey16Image readPng16(const std::string& path);
 
 // Peak signal-to-noise ratio over the RGB channels (alpha ignored), in dB, with MAX = 255:
 // 10·log10(255² / MSE), MSE averaged over width·height·3 values. Identical images give
