@@ -348,13 +348,19 @@ TEST(ExportMesh, TrianglesAreTwoPerCellFacingUpAndNormalsAreUnitAndOutward) {
     ASSERT_GT(glm::dot(glm::normalize(geometric), glm::normalize(a)), 0.5) << "triangle " << t / 3;
     for (int k = 0; k < 3; ++k) faceNormalSum[mesh.indices[t + k]] += glm::normalize(geometric);
   }
+  double angleSum = 0.0;
   for (size_t v = 0; v < mesh.normals.size(); ++v) {
     const glm::dvec3 normal = planetVector(mesh, mesh.normals[v]);
     ASSERT_NEAR(glm::length(normal), 1.0, 1e-6) << v;
     ASSERT_GT(glm::dot(normal, glm::normalize(planetPoint(mesh, mesh.positions[v]))), 0.5) << v;
-    // It follows the surface: close to the mean of the triangles around the vertex.
-    EXPECT_LT(angleBetween(normal, glm::normalize(faceNormalSum[v])), 10.0 * std::numbers::pi / 180.0) << v;
+    // It follows the surface: close to the mean of the triangles around the vertex. On rough
+    // ground the central difference and the faces' mean part by up to ~13° (measured); a normal
+    // in the wrong frame or from the wrong neighbours is off by tens of degrees everywhere.
+    const double angle = angleBetween(normal, glm::normalize(faceNormalSum[v]));
+    EXPECT_LT(angle, 25.0 * std::numbers::pi / 180.0) << v;
+    angleSum += angle;
   }
+  EXPECT_LT(angleSum / double(mesh.normals.size()), 5.0 * std::numbers::pi / 180.0);
 }
 
 TEST(ExportMesh, TilesSharingABorderHaveTheSameBorderVerticesAndNormals) {

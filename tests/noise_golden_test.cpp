@@ -1,10 +1,8 @@
 // Golden values of N(p) at seed 0 with the reference hash. They come from an independent
 // computation: tools/golden/simplex_reference.py, a plain double-precision Python
 // transcription of Gustavson's "Simplex noise demystified" (2005) sharing no code with
-// shaders/common/noise.glsl, evaluated at the float-rounded test coordinates. The points avoid
-// simplex-cell boundaries: with Gustavson's kernel radius^2 of 0.6 (not 0.5) a corner's kernel
-// reaches past its simplex, so N jumps by up to ~0.005 across a boundary and float and double
-// may fall on different sides of one.
+// shaders/common/noise.glsl, evaluated at the float-rounded test coordinates (kernel radius^2
+// 0.5, scale 75: the project's continuous variant of Gustavson's 0.6 and 32).
 #include <gtest/gtest.h>
 
 #include "noise/noise_cpu.h"
@@ -20,16 +18,16 @@ struct Golden {
 
 // Output of `python3 tools/golden/simplex_reference.py`.
 constexpr Golden kGolden[] = {
-    {0.1, 0.2, 0.3, 0.63589036106093655},
-    {1.5, -2.25, 3.75, -0.56940520833333241},
-    {-7.3, 4.1, 0.9, -0.43602227495624812},
-    {12.34, -56.78, 90.12, -0.30754861895646013},
-    {100.5, 200.25, -300.125, -0.077701316966932041},
-    {0.71, 0.37, -0.43, 0.71780268095633948},
-    {-0.5, -1.5, 2.5, -0.76009958847736658},
-    {3.14159, 2.71828, 1.41421, 0.17302675832137826},
-    {250.0, 13.5, 77.7, 0.076479893419047332},
-    {-33.3, -66.6, -99.9, -0.052438600686335129},
+    {0.1, 0.2, 0.3, 0.48001603375764107},
+    {1.5, -2.25, 3.75, -0.59356689453124922},
+    {-7.3, 4.1, 0.9, -0.41371766878463812},
+    {12.34, -56.78, 90.12, -0.2869910104036561},
+    {100.5, 200.25, -300.125, -0.0069892539838214548},
+    {0.71, 0.37, -0.43, 0.66546686348816286},
+    {-0.5, -1.5, 2.5, -0.75352044753086489},
+    {3.14159, 2.71828, 1.41421, 0.13466983807557631},
+    {250.0, 13.5, 77.7, 0.067906268619398136},
+    {-33.3, -66.6, -99.9, -0.059052175618945386},
 };
 
 NoiseSettings referenceSimplex() {
@@ -54,7 +52,6 @@ TEST(NoiseGolden, SimplexMatchesReferenceAtSeed0) {
 TEST(NoiseGolden, DoubleReferenceMatchesIndependentComputationTightly) {
   for (const Golden& g : kGolden) {
     double value = evaluateCpuDouble(referenceSimplex(), glm::dvec3(float(g.x), float(g.y), float(g.z)));
-    // The double kernel uses the float-rounded radius 0.6f, a relative change of 4e-8.
     EXPECT_NEAR(value, g.value, 1e-6) << "at (" << g.x << ", " << g.y << ", " << g.z << ")";
   }
 }

@@ -4,7 +4,8 @@
 A direct transcription of the algorithm as described in Stefan Gustavson, "Simplex noise
 demystified" (2005): skew (x+y+z)/3, unskew (i+j+k)/6, rank-ordered simplex corners,
 gradient = perm[ii+perm[jj+perm[kk]]] mod 12 over Perlin's permutation, kernel
-(0.6 - r^2)^4, sum scaled by 32. Written from the paper's description in plain Python double
+(0.5 - r^2)^4 (the paper's code uses 0.6, which makes the noise jump across simplex faces; the
+project uses 0.5), sum scaled by 75 (the project's scale for that kernel). Written from the paper's description in plain Python double
 precision, sharing no code with the C++/GLSL implementation (which selects gradients
 arithmetically and compiles one source for two languages), so agreement checks the noise
 geometry, not a copy of it. Run: python3 tools/golden/simplex_reference.py
@@ -49,13 +50,13 @@ def simplex3(x, y, z):
     total = 0.0
     for n, step in enumerate(steps):
         corner_offset = [offset0[a] - step[a] + n / 6.0 for a in range(3)]
-        t = 0.6 - sum(c * c for c in corner_offset)
+        t = 0.5 - sum(c * c for c in corner_offset)
         if t <= 0.0:
             continue
         ii, jj, kk = [(cell[a] + step[a]) & 255 for a in range(3)]
         g = GRADIENTS[PERM[ii + PERM[jj + PERM[kk]]] % 12]
         total += t ** 4 * sum(g[a] * corner_offset[a] for a in range(3))
-    return 32.0 * total
+    return 75.0 * total
 
 
 POINTS = [(0.1, 0.2, 0.3), (1.5, -2.25, 3.75), (-7.3, 4.1, 0.9), (12.34, -56.78, 90.12), (100.5, 200.25, -300.125),
