@@ -112,12 +112,16 @@ void main() {
   // in their middles (chord sag) on the coarse rings seen from orbit; ending the march there
   // put a faint grid of the triangles into the haze. The march ends at the sea's sphere when
   // that is nearer than what was drawn.
-  float seaLevel = sky.extent.w;
-  if (geometry && h > seaLevel) {
-    vec2 sea = raySphere(R, h, mu, seaLevel);
+  float lowest = sky.surface.x;
+  bool hasSea = sky.surface.y > 0.5f;
+  if (geometry && hasSea && h > lowest) {
+    vec2 sea = raySphere(R, h, mu, lowest);
     if (sea.x >= 0.0f && sea.x < tGeometry) tGeometry = sea.x;
   }
-  vec2 ground = raySphere(R, h, mu, 0.0f);
+  // A ray that met no geometry has met the ground only below the lowest surface: without a sea,
+  // basins below the radius sphere are seen past its horizon (the mesh may end before them), and
+  // counting the radius sphere as ground drew those rays black.
+  vec2 ground = raySphere(R, h, mu, hasSea ? 0.0f : min(lowest, 0.0f));
   bool seesGround = mu < 0.0f && ground.x >= 0.0f;
   float tEnd = geometry ? tGeometry : (seesGround ? ground.x : kInfinity);
 

@@ -357,6 +357,19 @@ TEST(ClipmapOrientation, HorizonMarginAddsTheTangentAngleOfTheHighestPeak) {
   EXPECT_EQ(horizonTheta(kEarthRadiusM, 1000.0, -500.0), horizonTheta(kEarthRadiusM, 1000.0, 0.0));
 }
 
+// Terrain below the radius sphere (a planet without a sea): the grazed sphere is r + L.
+TEST(ClipmapOrientation, HorizonReachesPastTheRadiusSphereOverLowerTerrain) {
+  const double r = 3.3895e6, h = 2.0, high = 8000.0, low = -4000.0;
+  const double theta = horizonTheta(r, h, high, low);
+  EXPECT_NEAR(theta, std::acos((r + low) / (r + h)) + std::acos((r + low) / (r + high)), 1e-9);
+  EXPECT_GT(theta, horizonTheta(r, h, high) + 0.02);  // the radius sphere's horizon cut much nearer
+  // Above the radius sphere a lowest surface changes nothing (a sea at 0 hides what lies below).
+  EXPECT_EQ(horizonTheta(r, h, high, 500.0), horizonTheta(r, h, high));
+  EXPECT_EQ(horizonTheta(r, h, high, 0.0), horizonTheta(r, h, high));
+  EXPECT_THROW(horizonTheta(r, h, high, std::nan("")), Error);
+  EXPECT_THROW(horizonTheta(r, h, high, -2.0 * r), Error);
+}
+
 TEST(ClipmapOrientation, HorizonGrowsWithAltitudeUpToTheRim) {
   double last = 0.0;
   for (double h = 0.01; h < 1e13; h *= 1.1) {

@@ -188,6 +188,24 @@ TEST_F(TerrainRender, LimbIsWhereTheGeometrySays) {
   }
 }
 
+// From a rim 150 m above a basin that lies below mars's radius sphere, the ground is drawn up to
+// the horizon. The horizon cut once took the radius sphere as the lowest surface, so the mesh
+// ended short of the ground that sight lines below that sphere's horizon reach: a black wedge
+// under the hazy sky. In daylight with air no pixel below the horizon is that dark.
+TEST_F(TerrainRender, GroundBelowTheRadiusSphereIsDrawnToTheHorizon) {
+  const PlanetDescription mars = resolvePreset("mars");
+  const CameraPose camera{-5.0, 140.0, 2.0, 60.0, 5.0};
+  ASSERT_LT(terrainHeightM(mars, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg)), -100.0);
+  RenderSettings settings = smallSettings(true);
+  settings.width = 320;
+  settings.height = 180;
+  const Rgba8Image image = Renderer(context(), mars, settings).render(camera, {100.0, 30.0}).image;
+  size_t dark = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 4)
+    dark += std::max({image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]}) < 20 ? 1 : 0;
+  EXPECT_EQ(dark, 0u);
+}
+
 TEST_F(TerrainRender, SameInputsGiveIdenticalImagesAndSeedsChangeThePlanet) {
   PlanetDescription planet = resolvePreset("earth");
   const CameraPose camera{-5.0, 150.0, 4.0e5, 30.0, -45.0};
@@ -360,7 +378,7 @@ TEST_F(TerrainRender, GoldenImages) {
     SunPose sun;
   } cases[] = {
       {"earth_orbit", "earth", {20.0, -30.0, 2.0e7, 0.0, -90.0}, {135.0, 35.0}},
-      {"earth_10km", "earth", {49.95, 43.3, 1.0e4, 90.0, -12.0}, {150.0, 35.0}},
+      {"earth_10km", "earth", {37.942, 163.707, 1.0e4, 90.0, -12.0}, {150.0, 35.0}},
       {"moon_ground", "moon", {-20.0, 40.0, 2.0, 0.0, -15.0}, {100.0, 12.0}},
       {"earth_ground_noon", "earth", {20.0, -30.0, 2.0, 90.0, 8.0}, {135.0, 55.0}},
       {"earth_ground_sunset", "earth", {20.0, -30.0, 2.0, 135.0, 3.0}, {135.0, 1.0}},

@@ -165,15 +165,19 @@ glm::dvec2 planetToLocalThetaPhi(const ClipmapFrame& frame, const glm::dvec3& di
   return {theta, phi};
 }
 
-double horizonTheta(double radiusM, double altitudeM, double maxTerrainHeightM) {
+double horizonTheta(double radiusM, double altitudeM, double maxTerrainHeightM, double lowestSurfaceM) {
   requireRadius(radiusM, "horizonTheta");
   requireNotNan(altitudeM, "altitude", "horizonTheta");
   requireNotNan(maxTerrainHeightM, "max terrain height", "horizonTheta");
+  requireNotNan(lowestSurfaceM, "lowest surface", "horizonTheta");
   double h = std::max(altitudeM, kClipmapMinAltitudeM);
   double terrain = std::max(maxTerrainHeightM, 0.0);
+  // The sphere a sight line grazes: the radius sphere, or lower where the terrain goes below it.
+  double low = std::min(lowestSurfaceM, 0.0);
+  requireRadius(radiusM + low, "horizonTheta (radius plus the lowest surface)");
   // Clasen & Hege's smooth-sphere horizon plus the angle over which the grazing sight line climbs
   // back to the highest possible peak. Infinite h gives atan2(∞, r) = π/2.
-  double theta = tangentAngle(radiusM, h) + tangentAngle(radiusM, terrain);
+  double theta = tangentAngle(radiusM + low, h - low) + tangentAngle(radiusM + low, terrain - low);
   return std::clamp(theta, kClipmapMinHorizonTheta, kHalfPi);
 }
 

@@ -78,11 +78,15 @@ glm::dvec2 planetToLocalThetaPhi(const ClipmapFrame& frame, const glm::dvec3& di
 // sea-level sphere reaches height H at a further acos(r/(r+H)), so
 //   θmax = acos(r/(r+h)) + acos(r/(r+H)),
 // each term evaluated as atan2(√(x(2r+x)), r) (no cancellation for x ≪ r). h below
-// kClipmapMinAltitudeM counts as that floor; a negative H counts as 0 (terrain below sea level is
-// hidden by the water sphere beyond its horizon). Clamped to [kClipmapMinHorizonTheta, π/2]: the
+// kClipmapMinAltitudeM counts as that floor; a negative H counts as 0. lowestSurfaceM L < 0 (the
+// deepest terrain of a planet without a sea, whose basins go below the radius sphere) lowers the
+// grazed sphere to r + L, and both terms become acos((r+L)/(r+h)) + acos((r+L)/(r+H)): from a
+// rim above a basin the ground beyond the radius sphere's horizon stays drawn (without it, rays
+// below that horizon found no mesh, and a black wedge showed at mars's horizon). L > 0 counts
+// as 0 (a sea at L = 0 hides what lies below it). Clamped to [kClipmapMinHorizonTheta, π/2]: the
 // mesh ends at the rim, so from beyond ~19 r an Everest-sized peak just past the limb is cut.
-// Throws planet::Error for a radius that is not finite and > 0, and for NaN h or H.
-double horizonTheta(double radiusM, double altitudeM, double maxTerrainHeightM);
+// Throws planet::Error for a radius (or r + L) that is not finite and > 0, and for NaN h, H or L.
+double horizonTheta(double radiusM, double altitudeM, double maxTerrainHeightM, double lowestSurfaceM = 0.0);
 
 // θdiffmin = s/r (Clasen & Hege 2006, via Hayes-McCoy 2010 §2.4): the angle at the planet centre
 // spanned by one pixel at the nadir, with s = h·tan(fovY/2)/(viewportHeightPx/2) the ground size of

@@ -50,16 +50,18 @@ double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& directi
   return planet.heightScale * sum;
 }
 
-double estimateMaxTerrainHeightM(const PlanetDescription& planet) {
+TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet) {
   constexpr int kSamples = 4096;
   const double spacing = planet.radiusM * std::sqrt(4.0 * std::numbers::pi / kSamples);
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  double highest = -1e300;
+  double highest = -1e300, lowest = 1e300;
   for (int i = 0; i < kSamples; ++i) {
     const double z = 1.0 - (2.0 * i + 1.0) / kSamples;
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
     const double phi = golden * i;
-    highest = std::max(highest, terrainHeightM(planet, {r * std::cos(phi), r * std::sin(phi), z}, spacing));
+    const double h = terrainHeightM(planet, {r * std::cos(phi), r * std::sin(phi), z}, spacing);
+    highest = std::max(highest, h);
+    lowest = std::min(lowest, h);
   }
   // What the omitted octaves can add: each weighs octaveWeight^i; bound a fractal's finer part
   // by twice its geometric tail (the multifractals multiply by signals of about 1..2).
@@ -71,7 +73,8 @@ double estimateMaxTerrainHeightM(const PlanetDescription& planet) {
     for (int i = int(budget.octaves) - 1; i < layer.noise.octaves; ++i) tail += std::pow(weight, i);
     margin += std::abs(layer.amplitudeM) * 2.0 * tail;
   }
-  return std::max(0.0, (highest + std::abs(planet.heightScale) * margin) * 1.1);
+  margin *= std::abs(planet.heightScale);
+  return {std::min(0.0, (lowest - margin) * 1.1), std::max(0.0, (highest + margin) * 1.1)};
 }
 
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,

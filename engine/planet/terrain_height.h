@@ -27,11 +27,16 @@ glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double 
 // limits a vertex or texel that far from its neighbours (octave_budget.h).
 double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction, double spacingM = 0.0);
 
-// An estimate of the highest terrain of the planet, for the horizon cut: the maximum over 4096
-// directions spread evenly over the sphere (a Fibonacci lattice) at ~200 km spacing, plus a
-// margin for what the octaves finer than that and the points between the samples may add
-// (the summed amplitude of every layer's omitted octaves, bounded generously, plus 10 %).
-double estimateMaxTerrainHeightM(const PlanetDescription& planet);
+// Estimates of the lowest and highest terrain of the planet, for the horizon cut: the extremes
+// over 4096 directions spread evenly over the sphere (a Fibonacci lattice) at ~200 km spacing,
+// widened by what the octaves finer than that and the points between the samples may add (the
+// summed amplitude of every layer's omitted octaves, bounded generously, plus 10 %). minM is at
+// most 0 and maxM at least 0 (the radius sphere is always inside the bounds).
+struct TerrainHeightBounds {
+  double minM = 0.0;
+  double maxM = 0.0;
+};
+TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet);
 
 // Heights along a great circle: `count` samples `stepM` apart, starting at `start`.
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,

@@ -172,6 +172,7 @@ Renderer::Prepared Renderer::prepareClamped(const CameraPose& camera, bool raise
   // The sky is drawn around the camera: its frame, also while the terrain's LOD is frozen.
   const glm::dmat3 planetToLocal = glm::transpose(frame.viewOrientation.localToPlanet);
   SkyView skyView;
+  skyView.lowestSurfaceM = terrain_->lowestSurfaceM();
   skyView.viewProjection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), frame.nearPlaneM) *
       viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);

@@ -165,9 +165,9 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const CloudMotion motion = cloudMotion(c, planet_.radiusM, view.timeS);
   u.cloudMotion = glm::vec4(motion.weights, motion.driftRad);
   for (int k = 0; k < kSkyIrradianceSamples; ++k) u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)];
-  // The sea surface, for the aerial perspective's end point (sky.comp); none: far below anything.
-  const float seaLevel = planet_.hasOcean ? float(planet_.seaLevelM) : -1.0e30f;
-  u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), seaLevel);
+  u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), 0.0f);
+  const double lowest = planet_.hasOcean ? planet_.seaLevelM : view.lowestSurfaceM;
+  u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, 0.0f, 0.0f);
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
   vk::uploadBuffer(context_, uniforms_[slot], &u, sizeof(u));
 }

@@ -42,6 +42,10 @@ struct SkyView {
   double nearPlaneM = 1.0;
   double timeS = 0.0;
   double pixelAngleRad = 1e-3;  // view angle of one pixel (vertical field of view / height)
+  // Without a sea, the deepest terrain (m above the radius sphere, TerrainPass::lowestSurfaceM):
+  // the sphere below which a ray that met no geometry has met the ground. With a sea the pass
+  // uses the sea level instead (where the haze march of a sea pixel ends).
+  double lowestSurfaceM = 0.0;
 };
 
 class SkyPass {

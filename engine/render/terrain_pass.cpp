@@ -80,7 +80,10 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   if (settings.subPixelRings == 0 || settings.subPixelRings > 64)
     throw Error(fmt::format("sub-pixel ring factor {} is outside 1..64", settings.subPixelRings));
   mesh_ = buildClipmapMesh(settings.mesh);
-  maxTerrainHeightM_ = estimateMaxTerrainHeightM(planet);
+  const TerrainHeightBounds bounds = estimateTerrainHeightBounds(planet);
+  maxTerrainHeightM_ = bounds.maxM;
+  // A sea hides what lies below its surface; without one the deepest basin is the lowest sight line.
+  lowestSurfaceM_ = planet.hasOcean ? std::max(bounds.minM, planet.seaLevelM) : bounds.minM;
   try {
     data_ = std::make_unique<PlanetGpuData>(context, planet);
     // Wireframe draws edges only, so full patch textures would be built for nothing (yet).
@@ -254,9 +257,9 @@ TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFr
   const ClipmapParams& params = settings_.mesh;
   Lod lod;
   lod.orientation = orientation;
-  // Cuts: horizon from the height above the radius sphere (with the terrain's maximum as
-  // margin), pixel cut from the height above the ground actually below the camera.
-  const double thetaMax = horizonTheta(radius, orientation.altitudeM, maxTerrainHeightM_);
+  // Cuts: horizon from the height above the radius sphere (with the terrain's maximum as margin
+  // and its lowest sight line), pixel cut from the height above the ground actually below the camera.
+  const double thetaMax = horizonTheta(radius, orientation.altitudeM, maxTerrainHeightM_, lowestSurfaceM_);
   const double thetaMin = minUsefulTheta(radius, std::max(heightAboveGroundM, kClipmapMinAltitudeM), view.fovYRad,
                                          view.height * settings_.subPixelRings, params.ringsPerLevel);
   lod.rings = selectRings(params.levels, params.ringsPerLevel, thetaMax, thetaMin);

@@ -154,6 +154,10 @@ class TerrainPass {
   const vk::Buffer& normalBuffer() const { return normals_; }
   // The maximum terrain height the horizon cut allows for (estimated once per planet).
   double maxTerrainHeightM() const { return maxTerrainHeightM_; }
+  // The lowest surface a sight line can graze (m above the radius sphere): the sea level with a
+  // sea (or the deepest terrain if that is higher), else the deepest terrain's estimate (<= 0).
+  // The horizon cut uses it.
+  double lowestSurfaceM() const { return lowestSurfaceM_; }
 
  private:
   // The level of detail of a frame: everything the heights depend on besides the planet. Kept
@@ -198,6 +202,7 @@ class TerrainPass {
   std::unique_ptr<PatchTextures> patches_;
   bool fullPatches_ = false;  // patches_ has settings_.patchSettings (else a minimal stand-in that is never sampled)
   double maxTerrainHeightM_ = 0.0;
+  double lowestSurfaceM_ = 0.0;  // the horizon cut's grazed sphere, relative to the radius (<= 0)
 
   vk::Buffer meshVertices_;
   vk::Buffer indices_;  // the mesh's indices, then a fan to the pole for every ring
