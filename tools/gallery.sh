@@ -21,17 +21,17 @@ for type in fbm cascade hybrid ridged; do
   render "fig_$type" --preset "tools/gallery/$type.toml" --camera 25,-40,1.4e7 --sun 150,50
   render "fig_${type}_600km" --preset "tools/gallery/$type.toml" --camera 25,-40,6e5,30,-35 --sun 150,30
 done
-# Descent onto a temperate coast of the default planet (earth), a hilly shore with mountains
-# inland at 50° N: positions chosen from `planet height`.
-render descent_1_orbit --camera 45,35,1.2e7 --sun 150,45
-render descent_2_100km --camera 49.95,42.2,1e5,90,-30 --sun 150,35
-render descent_3_10km --camera 49.95,43.3,1e4,90,-12 --sun 150,35
-render descent_4_1km --camera 49.95,43.45,1000,90,-10 --sun 150,35
-render descent_5_2m --camera 49.95,43.61,0,250,-1 --sun 150,35
-render descent_6_2m_sunset --camera 49.95,43.61,0,250,2 --sun 255,3
+# Descent onto a coast of the default planet (earth) at 38° N: hills and lakes, mountains
+# inland to the west, the sea to the east. Positions chosen from `planet height`.
+render descent_1_orbit --camera 34,160,1.2e7 --sun 150,45
+render descent_2_100km --camera 37.94,162.4,1e5,90,-30 --sun 150,35
+render descent_3_10km --camera 37.942,163.707,1e4,90,-12 --sun 150,35
+render descent_4_1km --camera 37.942,163.72,1300,90,-10 --sun 150,35
+render descent_5_2m --camera 37.942,163.764,0,90,-2 --sun 150,35
+render descent_6_2m_sunset --camera 37.942,163.764,0,90,0 --sun 270,3
 render sea_2m_noon --camera 20,-30,2,90,5 --sun 135,50
 render sea_2m_sunset --camera 20,-30,2,135,3 --sun 135,1
-render night_2m --camera 49.95,43.61,0,250,25 --sun 255,-12
+render night_2m --camera 37.942,163.764,0,270,25 --sun 275,-12
 render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
 render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
 render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30
