@@ -305,7 +305,7 @@ TEST(PresetWriter, TextHasThePresetLayoutWithEveryKeyAndResolvedDefaults) {
                            "has_ocean = true\n",
                            "sea_level_m = 0\n",
                            "height_scale = 1\n",
-                           "base_height_m = -2_100\n",
+                           "base_height_m = -2_400\n",
                            "[colors]\n",
                            "scheme = \"earth\"\n",
                            "deep_water = [0.004, 0.016, 0.045]\n",

@@ -101,7 +101,8 @@ TEST_F(TerrainRender, DrawnSurfaceDoesNotSwimWhenTheCameraMoves) {
     settings.terrain.limitOctaves = limitOctaves;
     Renderer renderer(context(), planet, settings);
     TerrainPass& terrain = renderer.terrain();
-    const double altitude = renderer.clampToGround({kLat, kLon, 0.0}).altitudeM + 8.0;
+    // 9.7 m above the ground, which may lie below the radius sphere (a request of 0 m would not be clamped).
+    const double altitude = renderer.clampToGround({kLat, kLon, -1.0e5}).altitudeM + 8.0;
     renderer.render({kLat, kLon, altitude}, {});
     std::vector<double> before;
     const std::vector<glm::vec4> surface0 = readSurface(context(), terrain);
@@ -131,9 +132,11 @@ TEST_F(TerrainRender, DrawnSurfaceDoesNotSwimWhenTheCameraMoves) {
       "surface change at fixed points after camera moves of %.3f m: %.4f m with octave limits, %.4f m "
       "without\n",
       0.3 * spacing, limited, unlimited);
-  // The stated tolerance: 5 mm for moves of 0.3 of the vertex spacing (measured 2.1 mm; every
-  // octave everywhere, as without limits, swims five times as much: 10.8 mm).
-  EXPECT_LT(limited, 0.005);
+  // The stated tolerance: 15 mm for moves of 0.3 of the vertex spacing, 9.7 m above the moon's
+  // rough ridged ground (measured 12.0 mm; every octave everywhere, as without limits, swims
+  // 31.5 mm). It was 5 mm (2.1 mm measured) with Gustavson's 0.6 kernel, whose octaves had less
+  // fine structure; the continuous kernel's steeper octaves move more between vertices.
+  EXPECT_LT(limited, 0.015);
   EXPECT_LT(limited, 0.5 * unlimited);
 }
 
