@@ -3,7 +3,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,30 +19,21 @@
 
 namespace {
 
-struct CommandResult : planet::test::ShellRun {
-  double seconds = 0.0;  // wall time of the run
-};
+using CommandResult = planet::test::ShellRun;
 
 using planet::test::readFileBytes;
 std::string readFile(const std::filesystem::path& path) { return readFileBytes(path); }
 std::filesystem::path tempDir() { return planet::test::processTempDir("cli_test"); }
 
 // Runs `planet ARGS` with `input` on stdin.
-CommandResult planet(const std::string& args, const std::string& input = "") {
-  const auto start = std::chrono::steady_clock::now();
-  CommandResult run;
-  static_cast<planet::test::ShellRun&>(run) = planet::test::runShell(PLANET_EXE, args, input, tempDir());
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return run;
+// `environment`: shell assignments put before the command (NAME=value ...).
+CommandResult planet(const std::string& args, const std::string& input = "", const std::string& environment = "") {
+  return planet::test::runShell(environment + PLANET_EXE, args, input, tempDir());
 }
 
 // planet with the Vulkan loader pointed at a driver list that does not exist.
 CommandResult planetWithoutDriver(const std::string& args, const std::string& input) {
-  CommandResult run;
-  static_cast<planet::test::ShellRun&>(run) = planet::test::runShell(
-      std::string("VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json ") + PLANET_EXE, args,
-      input, tempDir());
-  return run;
+  return planet(args, input, "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json ");
 }
 
 size_t lineCount(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
