@@ -12,9 +12,21 @@
 
 #include "core/error.h"
 #include "core/file.h"
+#include "planet/toml_reader.h"
 
 namespace planet {
 namespace {
+
+using toml_reader::Context;
+using toml_reader::formatNumber;
+using toml_reader::formatRange;
+using toml_reader::lineOf;
+using toml_reader::optionalTable;
+using toml_reader::parseAt;
+using toml_reader::requireTable;
+using toml_reader::shortened;
+using toml_reader::TableReader;
+using toml_reader::typeName;
 
 constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer", "atmosphere", "clouds", "water", "stars"};
 constexpr std::string_view kAtmosphereKeys[] = {"height_m",
@@ -51,401 +63,6 @@ constexpr SchemeName kSchemeNames[] = {
     {ColorScheme::Mars, "mars"},
 };
 
-// Shortest text that reads back to the same value, with a compact exponent ("1e8", "3e-7"),
-// so messages quote ranges as written and canonicalForm is exact. Floats (colours) use their
-// own shortest form ("0.3", not 0.30000001192092896).
-template <typename Real>
-std::string formatNumber(Real value) {
-  if (value == Real(0)) value = Real(0);  // -0 prints as 0: equal values, equal text
-  char buffer[64];
-  std::string text(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
-  size_t e = text.find('e');
-  if (e == std::string::npos) return text;
-  std::string exponent = text.substr(e + 1);
-  bool negative = exponent[0] == '-';
-  size_t digits = exponent.find_first_not_of("+-0");
-  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent.substr(digits == std::string::npos ? 0 : digits);
-}
-
-std::string formatRange(Range range) {
-  return fmt::format("[{}, {}]", formatNumber(range.min), formatNumber(range.max));
-}
-
-const char* typeName(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table: return "table";
-    case toml::node_type::array: return "array";
-    case toml::node_type::string: return "string";
-    case toml::node_type::integer: return "integer";
-    case toml::node_type::floating_point: return "float";
-    case toml::node_type::boolean: return "boolean";
-    case toml::node_type::date: return "date";
-    case toml::node_type::time: return "time";
-    case toml::node_type::date_time: return "date-time";
-    default: return "nothing";
-  }
-}
-
-uint32_t lineOf(const toml::node& node) { return node.source().begin.line; }
-
-// Where messages come from: "earth.toml:12: ..." (or "earth.toml: ..." without a line).
-class Context {
- public:
-  explicit Context(const std::string& source) : source_(source) {}
-
-  [[noreturn]] void fail(uint32_t line, const std::string& message) const {
-    if (line == 0) throw Error(fmt::format("{}: {}", source_, message));
-    throw Error(fmt::format("{}:{}: {}", source_, line, message));
-  }
-
-  const std::string& source() const { return source_; }
-
- private:
-  const std::string& source_;
-};
-
-// Text that toml++ would reject with a confusing message (or that is not text at all) is
-// reported first: empty input, bytes over the size limit, control bytes, invalid UTF-8.
-void checkText(const Context& context, std::string_view text) {
-  if (text.size() > kMaxPresetBytes)
-    context.fail(0, fmt::format("too large ({} bytes, limit {})", text.size(), kMaxPresetBytes));
-  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
-    context.fail(0, "empty document (expected [planet], [colors] and [[layer]] tables)");
-  uint32_t line = 1, column = 1;
-  for (size_t i = 0; i < text.size();) {
-    auto byte = uint8_t(text[i]);
-    size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xe ? 3 : (byte >> 3) == 0x1e ? 4 : 0;
-    bool valid = length != 0 && i + length <= text.size();
-    uint32_t codePoint = length == 1 ? byte : byte & (0x7fu >> length);
-    for (size_t k = 1; valid && k < length; ++k) {
-      auto next = uint8_t(text[i + k]);
-      valid = (next & 0xc0) == 0x80;
-      codePoint = (codePoint << 6) | (next & 0x3fu);
-    }
-    // Overlong forms, UTF-16 surrogates and values past U+10FFFF are not UTF-8 either.
-    constexpr uint32_t kMinForLength[] = {0, 0, 0x80, 0x800, 0x10000};
-    valid = valid && codePoint >= kMinForLength[length] && codePoint <= 0x10ffff &&
-            !(codePoint >= 0xd800 && codePoint <= 0xdfff);
-    if (!valid)
-      throw Error(
-          fmt::format("{}:{}:{}: not UTF-8 text (invalid byte 0x{:02x})", context.source(), line, column, byte));
-    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7f)
-      throw Error(fmt::format("{}:{}:{}: not TOML text (control byte 0x{:02x})", context.source(), line, column, byte));
-    if (byte == '\n') {
-      ++line;
-      column = 0;
-    }
-    ++column;
-    i += length;
-  }
-}
-
-// toml++ builds one table per part of a dotted key or table header ([a.a.a], a.a.a = 1) and
-// walks the tree recursively: tens of thousands of parts (a file of 100 kB, well under the
-// size limit) overflow the stack. No preset key has more than two parts, so key paths are
-// measured before toml++ sees the text. Values nest at most TOML_MAX_NESTED_VALUES deep
-// (toml++ checks that), so the depth of the tree stays bounded.
-constexpr int kMaxKeyParts = 8;
-
-// Walks the text as TOML: strings and comments are skipped, '[' and '{' in values are tracked,
-// and each key path (of a header, a key = value line or an inline table's entry) has its parts
-// counted, and non-ASCII bytes outside strings and comments are refused. Malformed text is left
-// to toml++ to report, which reads the text in the same order: a deep path is found here before
-// toml++ reaches anything that it would reject.
-class KeyDepthCheck {
- public:
-  KeyDepthCheck(const Context& context, std::string_view text) : context_(context), text_(text) {}
-
-  void run() {
-    std::vector<char> open;  // '[' and '{' of the values around the scan position
-    bool expectKey = true;   // at a line's start outside values, or after '{' or ',' in an inline table
-    while (i_ < text_.size()) {
-      const char c = text_[i_];
-      // TOML allows non-ASCII text only in strings and comments, which are stepped over here.
-      // It is rejected before toml++ sees it: toml++ 3.3 reaches __builtin_unreachable on most
-      // such characters where it skips whitespace (upstream issues #190 and #295).
-      if (uint8_t(c) >= 0x80)
-        context_.fail(line_, "a non-ASCII character outside a string or a comment (TOML keys and values are ASCII)");
-      if (c == '\n') {
-        ++line_;
-        ++i_;
-        expectKey = expectKey || open.empty();
-      } else if (c == ' ' || c == '\t' || c == '\r') {
-        ++i_;
-      } else if (c == '#') {
-        i_ = std::min(text_.find('\n', i_), text_.size());
-      } else if (expectKey) {
-        expectKey = false;
-        if (open.empty() && c == '[') {  // a header: [table] or [[array]]
-          ++i_;
-          if (i_ < text_.size() && text_[i_] == '[') ++i_;
-        } else if (c == '}' && !open.empty() && open.back() == '{') {  // an empty inline table
-          open.pop_back();
-          ++i_;
-          continue;
-        }
-        const int parts = keyPath();
-        if (parts > kMaxKeyParts)
-          context_.fail(line_, fmt::format("a key path of {} parts nests too deep (at most {})", parts, kMaxKeyParts));
-        // Not a key at all (toml++ says what it is): step over it, but not over a line's end.
-        if (parts == 0 && i_ < text_.size() && text_[i_] != '\n') ++i_;
-      } else if (c == '"' || c == '\'') {
-        string(true);
-      } else {
-        ++i_;
-        if (c == '[' || c == '{') open.push_back(c);
-        if ((c == ']' || c == '}') && !open.empty()) open.pop_back();
-        expectKey = (c == '{') || (c == ',' && !open.empty() && open.back() == '{');
-      }
-    }
-  }
-
- private:
-  // Parts of the dotted key at i_ ("a", "b" and "c" of a . "b" . 'c'); stops after the last.
-  int keyPath() {
-    int parts = 0;
-    while (true) {
-      skipBlanks();
-      if (i_ >= text_.size()) break;
-      if (text_[i_] == '"' || text_[i_] == '\'') {
-        string(false);
-      } else {
-        const size_t start = i_;
-        while (i_ < text_.size() && isBareKeyByte(text_[i_])) ++i_;
-        if (i_ == start) break;
-      }
-      ++parts;
-      skipBlanks();
-      if (i_ >= text_.size() || text_[i_] != '.') break;
-      ++i_;
-    }
-    return parts;
-  }
-
-  // TOML 1.0 bare keys: ASCII letters, digits, '_' and '-'.
-  static bool isBareKeyByte(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
-  }
-
-  void skipBlanks() {
-    while (i_ < text_.size() && (text_[i_] == ' ' || text_[i_] == '\t')) ++i_;
-  }
-
-  // Skips the string that starts at i_: basic ("...", with escapes) or literal ('...'), and
-  // where `multiLine` allows, their triple-quoted forms (which may hold newlines).
-  void string(bool multiLine) {
-    const char quote = text_[i_];
-    const bool basic = quote == '"';
-    const std::string_view triple = basic ? R"(""")" : "'''";
-    auto step = [&] { return basic && text_[i_] == '\\' && i_ + 1 < text_.size() && text_[i_ + 1] != '\n' ? 2 : 1; };
-    if (multiLine && text_.substr(i_).starts_with(triple)) {
-      i_ += 3;
-      while (i_ < text_.size() && !text_.substr(i_).starts_with(triple)) {
-        if (text_[i_] == '\n') ++line_;
-        if (basic && text_[i_] == '\\') backslash();
-        i_ += step();
-      }
-      i_ = std::min(i_ + 3, text_.size());
-      // Up to two more quotes belong to the content ("""a"""" ends with a quote).
-      for (int k = 0; k < 2 && i_ < text_.size() && text_[i_] == quote; ++k) ++i_;
-      return;
-    }
-    ++i_;
-    while (i_ < text_.size() && text_[i_] != quote && text_[i_] != '\n') {
-      if (basic && text_[i_] == '\\') backslash();
-      i_ += step();
-    }
-    if (i_ < text_.size() && text_[i_] == quote) ++i_;
-  }
-
-  // At a backslash in a basic string. toml++ 3.3 asks whether the characters after it are
-  // whitespace (an escape, or a line-ending backslash whose following whitespace and newlines
-  // are trimmed) and reaches __builtin_unreachable when the answer is sought for a non-ASCII
-  // character (found by the fuzzer). No TOML escape is non-ASCII, so such text is refused here.
-  void backslash() const {
-    size_t k = i_ + 1;
-    while (k < text_.size() && (text_[k] == ' ' || text_[k] == '\t' || text_[k] == '\r')) ++k;
-    uint32_t line = line_;
-    if (k < text_.size() && text_[k] == '\n')
-      while (k < text_.size() && (text_[k] == ' ' || text_[k] == '\t' || text_[k] == '\r' || text_[k] == '\n'))
-        line += text_[k++] == '\n';
-    if (k < text_.size() && uint8_t(text_[k]) >= 0x80)
-      context_.fail(line,
-                    "a non-ASCII character after a backslash in a string: not a TOML escape (write it as \\uXXXX, "
-                    "or start the line with an ASCII character after a line-ending backslash)");
-  }
-
-  const Context& context_;
-  std::string_view text_;
-  size_t i_ = 0;
-  uint32_t line_ = 1;
-};
-
-// User text quoted in a message (a key, a value): at most `limit` bytes, cut at a character's
-// start, with control characters (a quoted key may hold "\n") as '?' to keep the message one line.
-std::string shortened(std::string_view text, size_t limit = 40) {
-  size_t end = text.size();
-  if (end > limit) {
-    end = limit;
-    while (end > 0 && (uint8_t(text[end]) & 0xc0) == 0x80) --end;
-  }
-  std::string out(text.substr(0, end));
-  for (char& c : out)
-    if (uint8_t(c) < 0x20 || c == 0x7f) c = '?';
-  return end < text.size() ? out + "..." : out;
-}
-
-// One TOML table. Keys that are not in `known` are rejected up front, so a typo is reported
-// as itself rather than as the required key it misspells; then values are read with their
-// type and range checked.
-class TableReader {
- public:
-  TableReader(const Context& context, const toml::table& table, std::string displayName,
-              std::span<const std::string_view> known)
-      : context_(context), table_(table), displayName_(std::move(displayName)) {
-    for (auto&& [key, value] : table) {
-      if (std::find(known.begin(), known.end(), key.str()) == known.end())
-        context_.fail(key.source().begin.line,
-                      fmt::format("unknown key '{}' in {}", shortened(key.str()), displayName_));
-    }
-  }
-
-  uint32_t line() const { return lineOf(table_); }
-  const toml::node* find(std::string_view key) const { return table_.get(key); }
-
-  [[noreturn]] void missing(std::string_view key) const {
-    context_.fail(line(), fmt::format("missing key '{}' in {}", key, displayName_));
-  }
-  [[noreturn]] void wrongType(std::string_view key, const toml::node& node, const char* expected) const {
-    context_.fail(lineOf(node), fmt::format("'{}' must be {}, got {}", key, expected, typeName(node)));
-  }
-
-  std::optional<double> number(std::string_view key, std::optional<Range> range = std::nullopt) const {
-    const toml::node* node = find(key);
-    if (!node) return std::nullopt;
-    double value;
-    if (auto integer = node->as_integer())
-      value = double(integer->get());
-    else if (auto floating = node->as_floating_point())
-      value = floating->get();
-    else
-      wrongType(key, *node, "a number");
-    if (!range) return value;  // checked by its consumer (noise::validateNoiseSettings)
-    if (!std::isfinite(value))
-      context_.fail(lineOf(*node), fmt::format("{} must be a finite number, got {}", key, formatNumber(value)));
-    if (!(value >= range->min && value <= range->max))
-      context_.fail(lineOf(*node),
-                    fmt::format("{} must be in {}, got {}", key, formatRange(*range), formatNumber(value)));
-    return value;
-  }
-  double requiredNumber(std::string_view key, Range range) const {
-    if (auto value = number(key, range)) return *value;
-    missing(key);
-  }
-
-  std::optional<int64_t> integer(std::string_view key, Range range) const {
-    const toml::node* node = find(key);
-    if (!node) return std::nullopt;
-    auto integer = node->as_integer();
-    if (!integer) wrongType(key, *node, "an integer");
-    int64_t value = integer->get();
-    if (!(double(value) >= range.min && double(value) <= range.max))
-      context_.fail(lineOf(*node), fmt::format("{} must be in {}, got {}", key, formatRange(range), value));
-    return value;
-  }
-
-  std::optional<bool> boolean(std::string_view key) const {
-    const toml::node* node = find(key);
-    if (!node) return std::nullopt;
-    auto boolean = node->as_boolean();
-    if (!boolean) wrongType(key, *node, "a boolean");
-    return boolean->get();
-  }
-
-  std::optional<std::string> string(std::string_view key) const {
-    const toml::node* node = find(key);
-    if (!node) return std::nullopt;
-    auto string = node->as_string();
-    if (!string) wrongType(key, *node, "a string");
-    return string->get();
-  }
-  std::string requiredString(std::string_view key) const {
-    if (auto value = string(key)) return *value;
-    missing(key);
-  }
-
-  // A name printed in logs and reports: one line, not empty, not huge.
-  std::string name(std::string_view key) const {
-    std::string value = requiredString(key);
-    uint32_t at = lineOf(*find(key));
-    if (value.empty() || value.size() > kMaxNameBytes)
-      context_.fail(at, fmt::format("{} must be 1 to {} bytes long, got {}", key, kMaxNameBytes, value.size()));
-    for (char c : value)
-      if (uint8_t(c) < 0x20 || c == 0x7f) context_.fail(at, fmt::format("{} must not contain control characters", key));
-    return value;
-  }
-
-  // [x, y, z], each in `range`; a single number stands for all three when `allowScalar`.
-  std::optional<glm::dvec3> vector3(std::string_view key, Range range, bool allowScalar = false) const {
-    const toml::node* node = find(key);
-    if (!node) return std::nullopt;
-    auto component = [&](const toml::node& element, const std::string& label) {
-      double value;
-      if (auto integer = element.as_integer())
-        value = double(integer->get());
-      else if (auto floating = element.as_floating_point())
-        value = floating->get();
-      else
-        context_.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
-      if (!(value >= range.min && value <= range.max))
-        context_.fail(lineOf(element),
-                      fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
-      return value;
-    };
-    if (allowScalar && (node->is_integer() || node->is_floating_point())) {
-      double value = component(*node, std::string(key));
-      return glm::dvec3(value);
-    }
-    const toml::array* array = node->as_array();
-    if (!array || array->size() != 3)
-      context_.fail(lineOf(*node), fmt::format("'{}' must be {}an array of 3 numbers [r, g, b], got {}", key,
-                                               allowScalar ? "a number or " : "",
-                                               array ? fmt::format("{} elements", array->size()) : typeName(*node)));
-    glm::dvec3 result;
-    for (int i = 0; i < 3; ++i) result[i] = component(*array->get(size_t(i)), fmt::format("{}[{}]", key, i));
-    return result;
-  }
-
-  // [r, g, b], linear, each in kColorComponentRange.
-  std::optional<glm::vec3> color(std::string_view key) const {
-    if (auto value = vector3(key, kColorComponentRange)) return glm::vec3(*value);
-    return std::nullopt;
-  }
-
- private:
-  const Context& context_;
-  const toml::table& table_;
-  std::string displayName_;
-};
-
-// Runs `parse` (which throws planet::Error for a bad value) and prefixes its message with
-// the file and line of the value that caused it.
-template <typename Parse>
-auto parseAt(const Context& context, uint32_t line, Parse parse) {
-  try {
-    return parse();
-  } catch (const Error& e) {
-    context.fail(line, e.what());
-  }
-}
-
-const toml::table& requireTable(const Context& context, const toml::table& root, std::string_view key) {
-  const toml::node* node = root.get(key);
-  if (!node) context.fail(0, fmt::format("missing table [{}]", key));
-  if (!node->is_table()) context.fail(lineOf(*node), fmt::format("'{}' must be a table, got {}", key, typeName(*node)));
-  return *node->as_table();
-}
-
 PlanetColors readColors(const Context& context, const toml::table& table) {
   TableReader reader(context, table, "[colors]", kColorKeys);
   std::string schemeName = reader.requiredString("scheme");
@@ -471,14 +88,6 @@ PlanetColors readColors(const Context& context, const toml::table& table) {
   for (const ColorKey& c : colorKeys)
     if (auto value = reader.color(c.key)) colors.*c.member = *value;
   return colors;
-}
-
-// An optional table: nullptr when absent, an error when the key holds something else.
-const toml::table* optionalTable(const Context& context, const toml::table& root, std::string_view key) {
-  const toml::node* node = root.get(key);
-  if (!node) return nullptr;
-  if (!node->is_table()) context.fail(lineOf(*node), fmt::format("'{}' must be a table, got {}", key, typeName(*node)));
-  return node->as_table();
 }
 
 AtmosphereDescription readAtmosphere(const Context& context, const toml::table& table) {
@@ -604,9 +213,6 @@ std::vector<NoiseLayer> readLayers(const Context& context, const toml::table& ro
   return layers;
 }
 
-// toml++ messages are single lines, but a stray control character must not split ours, and
-// a key they quote may be as long as the file.
-std::string oneLine(std::string_view text) { return shortened(text, 200); }
 
 }  // namespace
 
@@ -668,15 +274,7 @@ PlanetColors defaultColors(ColorScheme scheme) {
 
 PlanetDescription parsePlanetDescription(std::string_view text, const std::string& sourceName) {
   const Context context(sourceName);
-  checkText(context, text);
-  KeyDepthCheck(context, text).run();
-  toml::table root;
-  try {
-    root = toml::parse(text, std::string_view(sourceName));
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}:{}: {}", sourceName, e.source().begin.line, e.source().begin.column,
-                            oneLine(e.description())));
-  }
+  const toml::table root = parseDocument(context, text, "[planet], [colors] and [[layer]] tables");
   for (auto&& [key, value] : root) {
     if (std::find(std::begin(kTopKeys), std::end(kTopKeys), key.str()) != std::end(kTopKeys)) continue;
     context.fail(key.source().begin.line, value.is_table()
