@@ -23,6 +23,7 @@ const uint kSchemeEarth = 0u;
 const uint kSchemeAltitude = 1u;
 const uint kSchemeMoon = 2u;
 const uint kSchemeMars = 3u;
+const uint kSchemeGiant = 4u;
 
 // The earth scheme's vegetation at a point: forest and grass where it is wet, desert in the
 // subtropical belts (about 15-35° of latitude, where the Hadley cells' dry air sinks), tundra
@@ -58,6 +59,19 @@ vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter, f
     vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb,
                  smoothstep(-1500.0f, 1500.0f, altitude + 600.0f * jitter));
     return mix(c, frame.colorCliff.rgb, smoothstep(0.25f, 0.5f, slope));
+  }
+  if (scheme == kSchemeGiant) {
+    // Belts and zones follow the latitude; the preset's layers (small heights, large
+    // wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
+    // by about a tenth of its width. The poles fade into a dull hood.
+    float latitude = asin(clamp(sinLatitude, -1.0f, 1.0f));
+    float warp = altitude / max(snowLine, 1.0f);
+    float s = 13.0f * latitude + 0.6f * warp;
+    float zones = smoothstep(-0.35f, 0.35f, sin(s));
+    float fine = 0.5f + 0.5f * sin(3.7f * s + 0.9f * warp);
+    vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb, zones);
+    c = mix(c, frame.colorBeach.rgb, 0.35f * fine * (1.0f - zones));
+    return mix(c, frame.colorCliff.rgb, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));
   }
   vec3 c = frame.colorLowland.rgb;
   float highland = 0.7f * snowLine;

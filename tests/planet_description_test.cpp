@@ -73,7 +73,7 @@ bool startsWith(const std::string& text, std::string_view prefix) { return text.
 TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   std::vector<std::string> names = presetNames();
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"earth", "mars", "moon"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"earth", "giant", "mars", "moon"}));
   EXPECT_EQ(resolvePreset(std::string(kDefaultPresetName)).name, "Earth");
   struct Expected {
     const char* name;
@@ -83,7 +83,7 @@ TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   };
   for (const Expected& e :
        {Expected{"earth", 6371000.0, true, ColorScheme::Earth}, Expected{"moon", 1737400.0, false, ColorScheme::Moon},
-        Expected{"mars", 3389500.0, false, ColorScheme::Mars}}) {
+        Expected{"mars", 3389500.0, false, ColorScheme::Mars}, Expected{"giant", 5.8e7, false, ColorScheme::Giant}}) {
     PlanetDescription d = resolvePreset(e.name);
     EXPECT_EQ(d.radiusM, e.radiusM) << e.name;
     EXPECT_EQ(d.hasOcean, e.hasOcean) << e.name;
@@ -425,7 +425,7 @@ TEST(PlanetDescription, DamagedPresetsOnlyEverThrowOneLineErrors) {
 TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
   EXPECT_EQ(resolvePreset("moon").name, "Moon");
   EXPECT_EQ(errorOf([] { resolvePreset("venus"); }),
-            "unknown planet preset 'venus' (built-in: earth, moon, mars; or a FILE.toml)");
+            "unknown planet preset 'venus' (built-in: earth, moon, mars, giant; or a FILE.toml)");
 
   std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("planet_description_test_" + std::to_string(::getpid()));

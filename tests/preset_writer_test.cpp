@@ -420,7 +420,7 @@ TEST_F(PresetWriterFile, SavedPresetLoadsBackEqualAndNoTemporaryFileRemains) {
     EXPECT_EQ(canonicalForm(back), canonicalForm(d));
     EXPECT_EQ(canonicalForm(resolvePreset(target)), canonicalForm(d));
   }
-  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "mars.toml", "moon.toml"}));
+  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "giant.toml", "mars.toml", "moon.toml"}));
 }
 
 TEST_F(PresetWriterFile, SaveReplacesAnExistingFileWhole) {

@@ -90,7 +90,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<RenderCommand>();
   CLI::App* sub = app.add_subcommand("render", "Render a planet offscreen (no window needed) and write a PNG");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
       ->capture_default_str();
   sub->add_option("--camera", cmd->camera,
                   "LAT,LON,ALT_M[,HEADING,PITCH]: degrees, metres above sea level, heading clockwise from north, "

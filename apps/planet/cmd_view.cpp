@@ -64,7 +64,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<ViewCommand>();
   CLI::App* sub = app.add_subcommand("view", "Fly around a planet in a window (real time)");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
       ->capture_default_str();
   sub->add_option("--camera", cmd->camera,
                   "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]");

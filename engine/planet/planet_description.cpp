@@ -61,6 +61,7 @@ constexpr SchemeName kSchemeNames[] = {
     {ColorScheme::Altitude, "altitude"},
     {ColorScheme::Moon, "moon"},
     {ColorScheme::Mars, "mars"},
+    {ColorScheme::Giant, "giant"},
 };
 
 PlanetColors readColors(const Context& context, const toml::table& table) {
@@ -258,6 +259,17 @@ PlanetColors defaultColors(ColorScheme scheme) {
       c.lowland = c.beach = {0.045f, 0.045f, 0.043f};
       c.highland = c.snow = {0.160f, 0.155f, 0.150f};
       c.cliff = {0.100f, 0.100f, 0.100f};
+      break;
+    case ColorScheme::Giant:
+      // Belts (lowland), zones (highland), the fine bands' tint (beach), the polar hoods (cliff).
+      c.iceCapLatitudeDeg = 90.0;
+      c.snowLineM = 1000.0;  // the height that shifts a band by about a tenth of its width
+      c.deepWater = c.shallowWater = {0.0f, 0.0f, 0.0f};
+      c.lowland = {0.330f, 0.200f, 0.110f};
+      c.highland = {0.700f, 0.620f, 0.480f};
+      c.beach = {0.560f, 0.330f, 0.180f};
+      c.cliff = {0.300f, 0.270f, 0.240f};
+      c.snow = c.highland;
       break;
     case ColorScheme::Mars:
       c.iceCapLatitudeDeg = 80.0;

@@ -38,6 +38,7 @@ enum class ColorScheme {
   Altitude,  // debug ramp by height (the palette's lowland -> highland -> snow)
   Moon,      // grey regolith: dark maria low, bright highlands high
   Mars,      // red dust and dark basalt, polar caps
+  Giant,     // a gas giant's belts and zones by latitude, warped by the heights (the layers' turbulence)
 };
 
 // Colours are linear RGB in [0, 1] (not sRGB: a picker's 0.5 is about 0.21 here).
