@@ -153,7 +153,8 @@ void main() {
     bool outside = h >= top;
     float tStart = outside ? topHits.x : 0.0f;
     float tExit = outside ? topHits.y : topHits.x;
-    if (tStart >= 0.0f && tExit > tStart) {
+    // (A scene's nearer body may hide the whole shell: then the ray never enters it.)
+    if (tStart >= 0.0f && tExit > tStart && min(tEnd, tExit) > tStart) {
       float tStop = min(tEnd, tExit);
       // Segment boundaries: the start, the layer crossings in between, the end.
       float cuts[4];
@@ -200,7 +201,7 @@ void main() {
     // (A clear noon sky is ~0.07 here, civil twilight ~0.002.)
     float starFade = 1.0f - smoothstep(0.001f, 0.01f, skyDisplay);
     result = surface * transmittance * starFade + inscatter;
-    if (!seesGround) {
+    if (!seesGround && sky.extent.w > 0.5f) {
       float sunRadius = a.radii.z;
       float cosRadius = cos(sunRadius);
       float disc = smoothstep(cosRadius - 0.2f * sunRadius * sunRadius, cosRadius, nu);

@@ -63,12 +63,12 @@ vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter, f
   if (scheme == kSchemeGiant) {
     // Belts and zones follow the latitude; the preset's layers (small heights, large
     // wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
-    // by about a tenth of its width. The poles fade into a dull hood.
+    // by about a twentieth of its width. The poles fade into a dull hood.
     float latitude = asin(clamp(sinLatitude, -1.0f, 1.0f));
     float warp = altitude / max(snowLine, 1.0f);
-    float s = 13.0f * latitude + 0.6f * warp;
+    float s = 17.0f * latitude + 0.3f * warp;
     float zones = smoothstep(-0.35f, 0.35f, sin(s));
-    float fine = 0.5f + 0.5f * sin(3.7f * s + 0.9f * warp);
+    float fine = 0.5f + 0.5f * sin(3.7f * s + 0.4f * warp);
     vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb, zones);
     c = mix(c, frame.colorBeach.rgb, 0.35f * fine * (1.0f - zones));
     return mix(c, frame.colorCliff.rgb, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));

@@ -1,6 +1,7 @@
 // planet render: one frame of a preset, offscreen (lavapipe or GPU), written to a PNG.
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include "cli_common.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "planet/scene_description.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -16,6 +18,8 @@ namespace {
 
 struct RenderCommand {
   std::string preset{kDefaultPresetName};
+  std::string scene;
+  std::string lookAt;
   std::string camera;
   std::string sun;
   std::string size = "960x540";
@@ -29,6 +33,93 @@ struct RenderCommand {
   bool noClouds = false;
   bool noWater = false;
 };
+
+void printTimings(const RenderResult& result) {
+  std::string times;
+  for (const vk::GpuTiming& timing : result.timings)
+    times += fmt::format(" {} {:.2f} ms", timing.name, timing.milliseconds);
+  fmt::print("GPU time per pass:{}\n", times.empty() ? " (no timestamps on this device)" : times);
+}
+
+// --scene: the bodies at --time, the camera on one of them (--camera BODY:LAT,LON,ALT[,HEADING,PITCH]),
+// optionally turned toward another (--look-at BODY).
+int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::App& sub,
+                   const RenderSettings& settings) {
+  if (sub.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
+  if (sub.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+  SceneDescription scene;
+  size_t body = 0;
+  CameraPose pose;
+  std::optional<size_t> target;
+  try {
+    scene = resolveScene(cmd.scene);
+    if (sub.count("--camera")) {
+      const size_t colon = cmd.camera.find(':');
+      if (colon == std::string::npos)
+        throw Error(fmt::format("--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '{}'", cmd.camera));
+      body = sceneBodyIndex(scene, cmd.camera.substr(0, colon));
+      pose = parseCameraPose(std::string_view(cmd.camera).substr(colon + 1));
+    }
+    if (sub.count("--look-at")) {
+      target = sceneBodyIndex(scene, cmd.lookAt);
+      if (*target == body) throw Error(fmt::format("--look-at {} names the camera's own body", cmd.lookAt));
+    }
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  std::vector<PlanetDescription> planets;
+  for (BodyDescription& b : scene.bodies) {
+    if (cmd.seed) applySeedOffset(b.planet, *cmd.seed);
+    planets.push_back(b.planet);
+  }
+  const std::vector<BodyState> states = sceneStateAt(scene, cmd.timeS);
+  const BodyState& on = states[body];
+  CameraBasis local = cameraBasis(pose, scene.bodies[body].planet.radiusM);
+  if (target)
+    local = lookingAt(local.position, glm::transpose(on.bodyToScene) * (states[*target].positionM - on.positionM));
+  SceneView view;
+  view.camera = {on.positionM + on.bodyToScene * local.position, on.bodyToScene * local.forward,
+                 on.bodyToScene * local.up};
+  view.bodies = sceneBodyViews(states);
+  view.timeS = cmd.timeS;
+
+  auto context = openContext(global);
+  RenderResult result;
+  size_t primary = 0;
+  {
+    Renderer renderer(*context, planets, settings);
+    result = renderer.renderScene(view);
+    primary = renderer.primaryBody();
+  }
+  if (result.cameraRaised)
+    std::fprintf(stderr, "planet: warning: the camera was below the ground of %s; raised to %.2f m\n",
+                 scene.bodies[primary].name.c_str(), result.camera.altitudeM);
+  writePng(cmd.out, result.image);
+  fmt::print("wrote {} ({}x{}, scene '{}' at t = {} s on {})\n", cmd.out, settings.width, settings.height, scene.name,
+             cmd.timeS, context->info.name);
+  fmt::print("camera: on {} at lat {:.4f} lon {:.4f} altitude {:.2f} m ({:.2f} m above the ground), heading {:.2f} "
+             "pitch {:.2f}\n",
+             scene.bodies[primary].name, result.camera.latitudeDeg, result.camera.longitudeDeg,
+             result.camera.altitudeM, result.terrain.heightAboveGroundM, result.camera.headingDeg,
+             result.camera.pitchDeg);
+  std::string distances;
+  for (size_t i = 0; i < scene.bodies.size(); ++i)
+    distances += fmt::format("{}{} {:.4g} m", i ? ", " : "", scene.bodies[i].name,
+                             glm::length(states[i].positionM - view.camera.position));
+  fmt::print("distance to the bodies' centres: {}\n", distances);
+  // Where on the camera's body each other body stands overhead (to place a camera under it).
+  std::string overhead;
+  const glm::dmat3 sceneToPrimary = glm::transpose(states[primary].bodyToScene);
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (i == primary) continue;
+    const glm::dvec3 d = glm::normalize(sceneToPrimary * (states[i].positionM - states[primary].positionM));
+    overhead += fmt::format("{}{} at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ", scene.bodies[i].name,
+                            std::asin(d.z) * 180.0 / std::numbers::pi, std::atan2(d.y, d.x) * 180.0 / std::numbers::pi);
+  }
+  if (!overhead.empty()) fmt::print("overhead on {}: {}\n", scene.bodies[primary].name, overhead);
+  printTimings(result);
+  return finishWithValidation(*context, 0);
+}
 
 int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::App& sub) {
   RenderSettings settings;
@@ -45,6 +136,8 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.sky.clouds = !cmd.noClouds;
   settings.terrain.water = !cmd.noWater;
   checkOutputFile("--out", cmd.out);
+  if (!cmd.scene.empty() || sub.count("--scene")) return runSceneRender(global, cmd, sub, settings);
+  if (sub.count("--look-at")) throw UsageError("--look-at needs --scene (it names a body of the scene)");
   PlanetDescription planet;
   CameraPose camera;
   SunPose sun;
@@ -78,10 +171,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   fmt::print("triangles drawn: {} (rings {}..{} of {}), vertices evaluated: {}, patch levels built: {}\n", t.triangles,
              t.rings.firstRing, t.rings.lastRing, settings.terrain.mesh.levels * settings.terrain.mesh.ringsPerLevel,
              t.verticesEvaluated, t.patchLevelsRebuilt);
-  std::string times;
-  for (const vk::GpuTiming& timing : result.timings)
-    times += fmt::format(" {} {:.2f} ms", timing.name, timing.milliseconds);
-  fmt::print("GPU time per pass:{}\n", times.empty() ? " (no timestamps on this device)" : times);
+  printTimings(result);
   return finishWithValidation(*context, 0);
 }
 
@@ -92,9 +182,13 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   CLI::App* sub = app.add_subcommand("render", "Render a planet offscreen (no window needed) and write a PNG");
   sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
       ->capture_default_str();
+  sub->add_option("--scene", cmd->scene,
+                  "A scene of several bodies instead of one preset: built-in (system) or a .toml file");
   sub->add_option("--camera", cmd->camera,
                   "LAT,LON,ALT_M[,HEADING,PITCH]: degrees, metres above sea level, heading clockwise from north, "
-                  "pitch above the horizon (-90 looks down) [default: 20,-30,2e7,0,-90]");
+                  "pitch above the horizon (-90 looks down) [default: 20,-30,2e7,0,-90]; with --scene "
+                  "BODY:LAT,LON,ALT_M[,HEADING,PITCH] [default: the first body]");
+  sub->add_option("--look-at", cmd->lookAt, "With --scene: turn the camera toward this body's centre");
   sub->add_option("--sun", cmd->sun,
                   "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]");
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
@@ -103,7 +197,8 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str();
   sub->add_flag("--wireframe", cmd->wireframe, "Draw triangle edges only (debug)");
   sub->add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)");
-  sub->add_option("--time", cmd->timeS, "Animation time in seconds (cloud drift and change, waves)")
+  sub->add_option("--time", cmd->timeS,
+                  "Time in seconds: cloud drift and change, waves; with --scene also the orbits and spins")
       ->capture_default_str();
   sub->add_option("--exposure", cmd->exposure, "HDR exposure before the tonemap")->capture_default_str();
   sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");

@@ -263,12 +263,12 @@ PlanetColors defaultColors(ColorScheme scheme) {
     case ColorScheme::Giant:
       // Belts (lowland), zones (highland), the fine bands' tint (beach), the polar hoods (cliff).
       c.iceCapLatitudeDeg = 90.0;
-      c.snowLineM = 1000.0;  // the height that shifts a band by about a tenth of its width
+      c.snowLineM = 1000.0;  // the height that shifts a band by about a twentieth of its width
       c.deepWater = c.shallowWater = {0.0f, 0.0f, 0.0f};
-      c.lowland = {0.330f, 0.200f, 0.110f};
-      c.highland = {0.700f, 0.620f, 0.480f};
-      c.beach = {0.560f, 0.330f, 0.180f};
-      c.cliff = {0.300f, 0.270f, 0.240f};
+      c.lowland = {0.200f, 0.125f, 0.070f};
+      c.highland = {0.320f, 0.280f, 0.215f};
+      c.beach = {0.340f, 0.210f, 0.110f};
+      c.cliff = {0.200f, 0.190f, 0.170f};
       c.snow = c.highland;
       break;
     case ColorScheme::Mars:

@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -88,6 +89,35 @@ CameraBasis cameraBasis(const CameraPose& pose, double seaLevelRadiusM) {
   // Screen up: the level heading direction tilted back, so looking straight down the top of
   // the picture points along the heading.
   basis.up = glm::normalize(-std::sin(pitch) * level + std::cos(pitch) * axes.up);
+  return basis;
+}
+
+CameraPose cameraPoseFromBasis(const CameraBasis& basis, double seaLevelRadiusM) {
+  const double distance = glm::length(basis.position);
+  const glm::dvec3 direction = basis.position / distance;
+  const LocalAxes axes = localAxes(direction);
+  CameraPose pose;
+  pose.latitudeDeg = std::asin(std::clamp(direction.z, -1.0, 1.0)) / kDegree;
+  pose.longitudeDeg = std::atan2(direction.y, direction.x) / kDegree;
+  pose.altitudeM = distance - seaLevelRadiusM;
+  const double sinPitch = std::clamp(glm::dot(basis.forward, axes.up), -1.0, 1.0);
+  const double pitch = std::asin(sinPitch);
+  // forward = cos p · level + sin p · up and screenUp = −sin p · level + cos p · up, so
+  // level = cos p · forward − sin p · screenUp.
+  const glm::dvec3 level = std::cos(pitch) * basis.forward - sinPitch * basis.up;
+  pose.headingDeg = std::atan2(glm::dot(level, axes.east), glm::dot(level, axes.north)) / kDegree;
+  pose.pitchDeg = pitch / kDegree;
+  return pose;
+}
+
+CameraBasis lookingAt(const glm::dvec3& position, const glm::dvec3& target) {
+  CameraBasis basis;
+  basis.position = position;
+  basis.forward = glm::normalize(target - position);
+  const LocalAxes axes = localAxes(position);
+  glm::dvec3 up = axes.up - glm::dot(axes.up, basis.forward) * basis.forward;
+  if (glm::length(up) < 1e-9) up = axes.north - glm::dot(axes.north, basis.forward) * basis.forward;
+  basis.up = glm::normalize(up);
   return basis;
 }
 

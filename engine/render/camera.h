@@ -50,6 +50,14 @@ struct CameraBasis {
 // `seaLevelRadiusM` is the radius of the sphere altitudes are measured from.
 CameraBasis cameraBasis(const CameraPose& pose, double seaLevelRadiusM);
 
+// The pose of a basis (its inverse; position off the centre, forward and up orthonormal):
+// heading and pitch follow the same rules, so cameraBasis(cameraPoseFromBasis(b, r), r) is b
+// to rounding. A forward straight up or down takes its heading from the screen's up.
+CameraPose cameraPoseFromBasis(const CameraBasis& basis, double seaLevelRadiusM);
+// A basis at `position` looking at `target` (planet frame), screen up as near the local up as
+// the view allows (the local north when looking straight up or down).
+CameraBasis lookingAt(const glm::dvec3& position, const glm::dvec3& target);
+
 // Unit direction toward the sun, planet frame.
 glm::dvec3 sunDirection(const SunPose& sun, const CameraPose& camera);
 

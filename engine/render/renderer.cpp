@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -33,29 +35,52 @@ void validateRenderSettings(const RenderSettings& settings) {
 }
 
 Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings)
-    : context_(context), planet_(planet), settings_(settings) {
+    : Renderer(context, std::vector<PlanetDescription>{planet}, settings) {}
+
+Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& bodies, const RenderSettings& settings)
+    : context_(context), settings_(settings) {
   validateRenderSettings(settings);
+  if (bodies.empty() || bodies.size() > kMaxSceneBodies)
+    throw Error(fmt::format("a renderer draws 1 to {} bodies, got {}", kMaxSceneBodies, bodies.size()));
   try {
-    skyTables_ = std::make_unique<SkyTables>(context, planet);
-    terrain_ = std::make_unique<TerrainPass>(context, planet, settings.terrain, kHdrFormat, kDepthFormat, *skyTables_);
-    sky_ = std::make_unique<SkyPass>(context, planet, *skyTables_, settings.sky, kColorFormat);
-    if (planet.stars.enabled && planet.stars.brightness > 0.0) {
+    createBodies(bodies);
+    for (const PlanetDescription& planet : bodies) {
+      if (!planet.stars.enabled || !(planet.stars.brightness > 0.0)) continue;
       StarSettings stars;
       stars.seed = planet.stars.seed;
       stars.faintestMagnitude = float(planet.stars.faintestMagnitude);
       stars.count = realisticStarCount(stars.faintestMagnitude);
       stars.brightness = float(planet.stars.brightness);
       stars_ = std::make_unique<Starfield>(context, stars, kHdrFormat, kDepthFormat);
+      break;
     }
     createTargets();
     if (context.timestampValidBits) {
-      for (vk::GpuTimer& timer : timers_) timer.create(context, 16);
+      // Per body: heights, patches, terrain, water and sky; then the frame's own scopes.
+      for (vk::GpuTimer& timer : timers_) timer.create(context, uint32_t(8 + 6 * bodies.size()));
       timerCreated_ = true;
     }
   } catch (...) {
     release();
     throw;
   }
+}
+
+void Renderer::createBodies(const std::vector<PlanetDescription>& planets) {
+  for (size_t i = 0; i < planets.size(); ++i) {
+    Body body;
+    body.planet = planets[i];
+    // Only the camera's own body gets the patch textures (prepareScene moves them); the others
+    // are seen from afar, where the vertex normals are finer than a pixel.
+    TerrainSettings terrain = settings_.terrain;
+    if (i > 0) terrain.patches = false;
+    body.skyTables = std::make_unique<SkyTables>(context_, body.planet);
+    body.terrain =
+        std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
+    body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky, kColorFormat);
+    bodies_.push_back(std::move(body));
+  }
+  composeOrder_ = {0};
 }
 
 Renderer::~Renderer() { release(); }
@@ -66,9 +91,14 @@ void Renderer::release() {
   timerCreated_ = false;
   destroyTargets();
   stars_.reset();
-  sky_.reset();
-  terrain_.reset();
-  skyTables_.reset();
+  // Each body's passes before its tables, later bodies first.
+  while (!bodies_.empty()) {
+    Body& body = bodies_.back();
+    body.sky.reset();
+    body.terrain.reset();
+    body.skyTables.reset();
+    bodies_.pop_back();
+  }
 }
 
 void Renderer::createTargets() {
@@ -78,7 +108,7 @@ void Renderer::createTargets() {
   color_ = vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
   depth_ = vk::createImage2D(context_, extent, kDepthFormat,
                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-  sky_->setTargets(hdr_, depth_);
+  for (Body& body : bodies_) body.sky->setTargets(hdr_, depth_);
 }
 
 void Renderer::destroyTargets() {
@@ -100,7 +130,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 
 void Renderer::setSkySettings(const SkySettings& sky) {
   settings_.sky = sky;
-  sky_->setSettings(sky);
+  for (Body& body : bodies_) body.sky->setSettings(sky);
 }
 
 std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
@@ -109,8 +139,12 @@ std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
 }
 
 CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const {
-  const double ground = terrainHeightM(planet_, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg));
-  const double surface = planet_.hasOcean ? std::max(ground, planet_.seaLevelM) : ground;
+  return raisedAboveGround(bodies_[0].planet, camera, raised);
+}
+
+CameraPose Renderer::raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised) {
+  const double ground = terrainHeightM(planet, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg));
+  const double surface = planet.hasOcean ? std::max(ground, planet.seaLevelM) : ground;
   CameraPose result = camera;
   const bool below = camera.altitudeM < surface + kMinEyeHeightM;
   if (below) result.altitudeM = surface + kMinEyeHeightM;
@@ -148,46 +182,142 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS,
                                      uint32_t slot) {
+  if (bodies_.size() != 1)
+    throw Error(fmt::format("Renderer::prepare places the camera on one planet; this renderer draws {} bodies "
+                            "(use prepareScene)",
+                            bodies_.size()));
   bool raised = false;
   const CameraPose camera = clampToGround(requested, &raised);
-  return prepareClamped(camera, raised, sunPlanet, timeS, slot);
+  SceneView view;
+  view.camera = cameraBasis(camera, bodies_[0].planet.radiusM);
+  view.bodies = {SceneBodyView{glm::dvec3(0.0), glm::dmat3(1.0), sunPlanet}};
+  view.timeS = timeS;
+  return prepareFrame(view, 0, camera, raised, slot);
 }
 
-Renderer::Prepared Renderer::prepareClamped(const CameraPose& camera, bool raised, const glm::dvec3& sunPlanet,
-                                            double timeS, uint32_t slot) {
+std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states) {
+  std::vector<SceneBodyView> views;
+  for (const BodyState& state : states) {
+    const double distance = glm::length(state.positionM);
+    views.push_back({state.positionM, state.bodyToScene,
+                     distance > 0.0 ? -state.positionM / distance : glm::dvec3(0.0, 0.0, 1.0)});
+  }
+  return views;
+}
+
+Renderer::Prepared Renderer::prepareScene(const SceneView& requested, uint32_t slot) {
+  if (requested.bodies.size() != bodies_.size())
+    throw Error(fmt::format("scene view has {} bodies, the renderer {}", requested.bodies.size(), bodies_.size()));
+  // The camera's own body: the one whose surface is nearest relative to its size.
+  size_t primary = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const double radius = bodies_[i].planet.radiusM;
+    const double relative = (glm::length(requested.camera.position - requested.bodies[i].positionM) - radius) / radius;
+    if (relative < nearest) {
+      nearest = relative;
+      primary = i;
+    }
+  }
+  // The eye-height rule on that body, in its frame: a camera below its ground is raised along
+  // the vertical, its view direction kept.
+  const SceneBodyView& body = requested.bodies[primary];
+  const glm::dmat3 sceneToBody = glm::transpose(body.bodyToScene);
+  CameraBasis local{sceneToBody * (requested.camera.position - body.positionM), sceneToBody * requested.camera.forward,
+                    sceneToBody * requested.camera.up};
+  const double radius = bodies_[primary].planet.radiusM;
+  bool raised = false;
+  const CameraPose pose = raisedAboveGround(bodies_[primary].planet, cameraPoseFromBasis(local, radius), &raised);
+  SceneView view = requested;
+  if (raised)
+    view.camera.position =
+        body.positionM + body.bodyToScene * (glm::normalize(local.position) * (radius + pose.altitudeM));
+  return prepareFrame(view, primary, pose, raised, slot);
+}
+
+Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary, const CameraPose& primaryPose,
+                                          bool raised, uint32_t slot) {
   vk::checkFrameSlot(slot);
   preparedSlot_ = UINT32_MAX;  // until this prepare() completed
+  if (primary != primary_) {
+    bodies_[primary_].terrain->setPatchesEnabled(false);
+    bodies_[primary].terrain->setPatchesEnabled(settings_.terrain.patches);
+    primary_ = primary;
+  }
   Prepared prepared;
-  prepared.camera = camera;
+  prepared.camera = primaryPose;
   prepared.cameraRaised = raised;
-  TerrainView view;
-  view.camera = cameraBasis(prepared.camera, planet_.radiusM);
-  view.fovYRad = settings_.fovYDeg * std::numbers::pi / 180.0;
-  view.width = settings_.width;
-  view.height = settings_.height;
-  view.sunDirection = sunPlanet;
-  view.timeS = timeS;
-  const TerrainFrameInfo& frame = terrain_->prepare(view, slot);
 
-  // The sky is drawn around the camera: its frame, also while the terrain's LOD is frozen.
-  const glm::dmat3 planetToLocal = glm::transpose(frame.viewOrientation.localToPlanet);
-  SkyView skyView;
-  skyView.lowestSurfaceM = terrain_->lowestSurfaceM();
-  skyView.viewProjection =
-      reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), frame.nearPlaneM) *
-      viewMatrix(planetToLocal * view.camera.forward, planetToLocal * view.camera.up);
-  skyView.localToPlanet = frame.viewOrientation.localToPlanet;
-  skyView.forward = planetToLocal * view.camera.forward;
-  skyView.sunLocal = planetToLocal * view.sunDirection;
-  skyView.cameraPlanet = view.camera.position;
-  skyView.altitudeM = frame.viewOrientation.altitudeM;
-  skyView.nearPlaneM = frame.nearPlaneM;
-  skyView.timeS = timeS;
-  skyView.pixelAngleRad = view.fovYRad / double(view.height);
-  sky_->prepare(skyView, settings_.width, settings_.height, slot);
-  // Stars are fixed in the planet frame: planet direction → local → clip (a push constant).
-  starsToClip_ = glm::mat4(skyView.viewProjection * glm::dmat4(planetToLocal));
+  // Each body sees the camera and the sun in its own frame.
+  std::vector<TerrainView> views(bodies_.size());
+  std::vector<glm::dmat3> sceneToBody(bodies_.size());
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    const SceneBodyView& body = view.bodies[i];
+    sceneToBody[i] = glm::transpose(body.bodyToScene);
+    TerrainView& t = views[i];
+    t.camera.position = sceneToBody[i] * (view.camera.position - body.positionM);
+    t.camera.forward = sceneToBody[i] * view.camera.forward;
+    t.camera.up = sceneToBody[i] * view.camera.up;
+    t.fovYRad = settings_.fovYDeg * std::numbers::pi / 180.0;
+    t.width = settings_.width;
+    t.height = settings_.height;
+    t.sunDirection = sceneToBody[i] * body.sunDirection;
+    t.timeS = view.timeS;
+  }
+  // One depth buffer: every body takes the nearest near plane. The primary body's own rule
+  // (a quarter of the height above its ground) is capped by the others' clearance.
+  double maxNear = 5.0e4;
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    if (i == primary) continue;
+    const double clearance = glm::length(views[i].camera.position) - bodies_[i].planet.radiusM -
+                             bodies_[i].terrain->maxTerrainHeightM();
+    maxNear = std::min(maxNear, std::max(0.25 * clearance, 0.01));
+  }
+  views[primary].maxNearPlaneM = maxNear;
+  const TerrainFrameInfo& frame = bodies_[primary].terrain->prepare(views[primary], slot);
   prepared.terrain = frame;
+  const double nearPlane = frame.nearPlaneM;
+  std::vector<std::pair<double, size_t>> farther;  // (distance, body) of the other bodies with air
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    if (i == primary) continue;
+    views[i].maxNearPlaneM = nearPlane;
+    bodies_[i].terrain->prepare(views[i], slot);
+    if (bodies_[i].planet.atmosphere.enabled) farther.emplace_back(glm::length(views[i].camera.position), i);
+  }
+  std::sort(farther.begin(), farther.end(), std::greater<>());
+  composeOrder_.clear();
+  for (const auto& [distance, i] : farther) composeOrder_.push_back(i);
+  composeOrder_.push_back(primary);
+
+  // The sky is drawn around the camera: each body's frame, also while the terrain's LOD is frozen.
+  glm::dmat4 primaryViewProjection(1.0);
+  glm::dmat3 primaryPlanetToLocal(1.0);
+  for (size_t i : composeOrder_) {
+    const TerrainFrameInfo& bodyFrame = bodies_[i].terrain->frame();
+    const TerrainView& t = views[i];
+    const glm::dmat3 planetToLocal = glm::transpose(bodyFrame.viewOrientation.localToPlanet);
+    SkyView skyView;
+    skyView.lowestSurfaceM = bodies_[i].terrain->lowestSurfaceM();
+    skyView.viewProjection = reversedZPerspective(t.fovYRad, double(t.width) / double(t.height), nearPlane) *
+                             viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);
+    skyView.localToPlanet = bodyFrame.viewOrientation.localToPlanet;
+    skyView.forward = planetToLocal * t.camera.forward;
+    skyView.sunLocal = planetToLocal * t.sunDirection;
+    skyView.cameraPlanet = t.camera.position;
+    skyView.altitudeM = bodyFrame.viewOrientation.altitudeM;
+    skyView.nearPlaneM = nearPlane;
+    skyView.timeS = view.timeS;
+    skyView.pixelAngleRad = t.fovYRad / double(t.height);
+    skyView.drawSun = i == primary;
+    bodies_[i].sky->prepare(skyView, settings_.width, settings_.height, slot);
+    if (i == primary) {
+      primaryViewProjection = skyView.viewProjection;
+      primaryPlanetToLocal = planetToLocal;
+    }
+  }
+  // Stars are fixed in the scene frame: scene direction → the primary body's frame → local → clip
+  // (a push constant).
+  starsToClip_ = glm::mat4(primaryViewProjection * glm::dmat4(primaryPlanetToLocal * sceneToBody[primary]));
   preparedSlot_ = slot;
   return prepared;
 }
@@ -200,9 +330,9 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   const VkExtent2D extent{settings_.width, settings_.height};
   vk::GpuTimer* timer = timerCreated_ ? &timers_[slot] : nullptr;
   if (timer) timer->reset(cmd);
-  skyTables_->recordBuild(cmd, timer);
+  for (Body& body : bodies_) body.skyTables->recordBuild(cmd, timer);
   if (stars_) stars_->recordGenerate(cmd, timer);
-  terrain_->recordCompute(cmd, timer);
+  for (Body& body : bodies_) body.terrain->recordCompute(cmd, timer);
   // Earlier contents are discarded: the frame clears the HDR target and the depth. The source
   // scope covers every earlier command on the queue (a previous frame still reading them).
   hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -218,7 +348,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
   // Stars first, at infinity; everything drawn later covers them.
   if (stars_) stars_->recordDraw(cmd, starsToClip_, float(settings_.height), timer);
-  terrain_->recordDraw(cmd, timer);
+  for (Body& body : bodies_) body.terrain->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
   // The compose pass reads and writes the HDR colour and samples the depth.
   vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -227,7 +357,14 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-  sky_->recordCompose(cmd, timer);
+  for (size_t k = 0; k < composeOrder_.size(); ++k) {
+    // Each compose reads the colour the previous one wrote (a nearer atmosphere over a farther one's).
+    if (k > 0)
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    bodies_[composeOrder_[k]].sky->recordCompose(cmd, timer);
+  }
   // The tonemap's fragments read what the compose pass wrote.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -236,22 +373,38 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   const VkRenderingAttachmentInfo colorAttachment = clearedAttachment(color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   beginRendering(cmd, extent, &colorAttachment, nullptr);
-  sky_->recordTonemap(cmd, timer);
+  bodies_[primary_].sky->recordTonemap(cmd, timer);
   vkCmdEndRendering(cmd);
 }
 
 RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
-  RenderResult result;
+  if (bodies_.size() != 1)
+    throw Error(fmt::format("Renderer::render places the camera on one planet; this renderer draws {} bodies "
+                            "(use renderScene)",
+                            bodies_.size()));
   // The sun is placed from the camera's ground point as rendered (after the eye-height rule,
-  // applied once here). One frame at a time (the submission is waited for): slot 0 always.
+  // applied once here).
   bool raised = false;
   const CameraPose camera = clampToGround(requested, &raised);
-  const Prepared prepared = prepareClamped(camera, raised, sunDirection(sun, camera), timeS, 0);
+  SceneView view;
+  view.camera = cameraBasis(camera, bodies_[0].planet.radiusM);
+  view.bodies = {SceneBodyView{glm::dvec3(0.0), glm::dmat3(1.0), sunDirection(sun, camera)}};
+  view.timeS = timeS;
+  return finishFrame(prepareFrame(view, 0, camera, raised, 0), readHdr);
+}
+
+RenderResult Renderer::renderScene(const SceneView& view, bool readHdr) {
+  return finishFrame(prepareScene(view, 0), readHdr);
+}
+
+RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
+  // One frame at a time (the submission is waited for): slot 0 always.
+  RenderResult result;
   result.camera = prepared.camera;
   result.cameraRaised = prepared.cameraRaised;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });
   result.timings = lastTimings(0);
-  result.terrain = terrain_->frame();
+  result.terrain = bodies_[primary_].terrain->frame();
   std::vector<uint8_t> pixels = vk::readbackImage(context_, color_);
   result.image.width = settings_.width;
   result.image.height = settings_.height;

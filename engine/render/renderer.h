@@ -12,6 +12,7 @@
 
 #include "core/image_file.h"
 #include "planet/planet_description.h"
+#include "planet/scene_description.h"
 #include "render/camera.h"
 #include "render/sky_pass.h"
 #include "render/terrain_pass.h"
@@ -53,9 +54,27 @@ struct RenderResult {
 class SkyTables;
 class Starfield;
 
+// A frame of a scene of several bodies (issue 8): everything in the scene frame, double.
+struct SceneBodyView {
+  glm::dvec3 positionM{0.0};       // the body's centre
+  glm::dmat3 bodyToScene{1.0};     // rotation of its planet frame
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // unit, from the body toward the sun
+};
+struct SceneView {
+  CameraBasis camera;  // scene frame
+  std::vector<SceneBodyView> bodies;  // one per body of the Renderer, in its order
+  double timeS = 0.0;                 // animation phase (clouds, waves)
+};
+// The bodies' views at their scene positions, lit by a sun at the scene's origin.
+std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states);
+
 class Renderer {
  public:
   Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings);
+  // A scene: one terrain (and atmosphere, when the preset has one) per body, drawn into one
+  // frame with camera-relative positions and one depth buffer. The stars are those of the
+  // first body whose preset has them, fixed in the scene frame.
+  Renderer(vk::Context& context, const std::vector<PlanetDescription>& bodies, const RenderSettings& settings);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -86,6 +105,12 @@ class Renderer {
     TerrainFrameInfo terrain;
   };
   Prepared prepare(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS, uint32_t slot);
+  // A scene frame (a Renderer built for that many bodies). The primary body, whose surface is
+  // nearest the camera relative to its radius, applies the eye-height rule, gets the patch
+  // textures and draws the sun's disc; the others are composed far to near before it.
+  // Prepared::camera is the primary body's pose of the (possibly raised) camera.
+  Prepared prepareScene(const SceneView& view, uint32_t slot);
+  RenderResult renderScene(const SceneView& view, bool readHdr = false);
   void record(VkCommandBuffer cmd, uint32_t slot);
   // The tonemapped sRGB frame (RGBA8) that record() leaves (shared by the slots: the next
   // recorded frame rewrites it, so read it only when no frame is in flight), and the GPU times
@@ -104,25 +129,38 @@ class Renderer {
   // kMinEyeHeightM is raised to it.
   CameraPose clampToGround(const CameraPose& camera, bool* raised = nullptr) const;
 
-  TerrainPass& terrain() { return *terrain_; }
+  TerrainPass& terrain() { return *bodies_[0].terrain; }
+  TerrainPass& terrain(size_t body) { return *bodies_.at(body).terrain; }
+  size_t bodyCount() const { return bodies_.size(); }
+  // The body the last prepared frame treated as the camera's own.
+  size_t primaryBody() const { return primary_; }
   const RenderSettings& settings() const { return settings_; }
 
  private:
   void release();
-  // prepare() for a camera already through clampToGround (which costs a full-detail CPU height).
-  Prepared prepareClamped(const CameraPose& camera, bool raised, const glm::dvec3& sunPlanet, double timeS,
-                          uint32_t slot);
+  struct Body {
+    PlanetDescription planet;
+    std::unique_ptr<SkyTables> skyTables;
+    std::unique_ptr<TerrainPass> terrain;
+    std::unique_ptr<SkyPass> sky;
+  };
+  void createBodies(const std::vector<PlanetDescription>& planets);
+  // The frame of a camera already through the eye-height rule (which costs a full-detail CPU
+  // height), with the primary body's pose of it (Prepared::camera).
+  Prepared prepareFrame(const SceneView& view, size_t primary, const CameraPose& primaryPose, bool raised,
+                        uint32_t slot);
+  static CameraPose raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised);
+  RenderResult finishFrame(const Prepared& prepared, bool readHdr);
   void createTargets();
   void destroyTargets();
   std::vector<glm::vec4> readHdrImage();
 
   vk::Context& context_;
-  PlanetDescription planet_;
   RenderSettings settings_;
-  std::unique_ptr<SkyTables> skyTables_;
-  std::unique_ptr<TerrainPass> terrain_;
-  std::unique_ptr<SkyPass> sky_;
-  std::unique_ptr<Starfield> stars_;  // null when the preset turns the stars off
+  std::vector<Body> bodies_;
+  size_t primary_ = 0;
+  std::vector<size_t> composeOrder_;  // bodies whose compose pass runs, far to near (the primary last)
+  std::unique_ptr<Starfield> stars_;  // null when no preset has stars
   vk::Image hdr_;
   vk::Image color_;
   vk::Image depth_;

@@ -165,7 +165,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const CloudMotion motion = cloudMotion(c, planet_.radiusM, view.timeS);
   u.cloudMotion = glm::vec4(motion.weights, motion.driftRad);
   for (int k = 0; k < kSkyIrradianceSamples; ++k) u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)];
-  u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), 0.0f);
+  u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
   const double lowest = planet_.hasOcean ? planet_.seaLevelM : view.lowestSurfaceM;
   u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, 0.0f, 0.0f);
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).

@@ -46,6 +46,9 @@ struct SkyView {
   // the sphere below which a ray that met no geometry has met the ground. With a sea the pass
   // uses the sea level instead (where the haze march of a sea pixel ends).
   double lowestSurfaceM = 0.0;
+  // The sun's disc is drawn by one compose pass per frame: in a scene of several bodies, by the
+  // last one (the camera's own body), after the farther bodies' atmospheres were composed.
+  bool drawSun = true;
 };
 
 class SkyPass {

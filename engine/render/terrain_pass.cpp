@@ -306,7 +306,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   info.groundHeightM = terrainHeightM(planet_, info.viewOrientation.nadirDirection());
   const double ground = planet_.hasOcean ? std::max(info.groundHeightM, planet_.seaLevelM) : info.groundHeightM;
   info.heightAboveGroundM = std::max(info.viewOrientation.altitudeM - ground, kClipmapMinAltitudeM * 0.01);
-  info.nearPlaneM = std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4);
+  info.nearPlaneM = std::min(std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4), std::max(view.maxNearPlaneM, 0.01));
 
   info.lodFrozen = freezeLod_ && lod_;
   if (!info.lodFrozen) lod_ = chooseLod(view, info.viewOrientation, info.heightAboveGroundM);

@@ -99,6 +99,9 @@ struct TerrainView {
   uint32_t height = 540;
   glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // planet frame, unit
   double timeS = 0.0;                      // animation time (waves)
+  // The near plane is 0.25 × the height above the ground, at most this: the scene renderer
+  // draws several bodies into one depth buffer and gives them all the nearest body's plane.
+  double maxNearPlaneM = 5.0e4;
 };
 
 class TerrainPass {
@@ -138,6 +141,9 @@ class TerrainPass {
   void setWireframe(bool wireframe) { settings_.wireframe = wireframe; }
   // The water sphere over the ground; only planets with an ocean have one.
   void setWaterEnabled(bool water) { settings_.water = water; }
+  // Per-pixel detail from the patch textures (built on first use, after waiting for the device
+  // to be idle); off, the vertex normals shade the ground (bodies a few pixels across).
+  void setPatchesEnabled(bool patches) { settings_.patches = patches; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).
   void setSunIntensity(double scale) { settings_.sunIntensity = scale; }
   // Fill light, as a fraction of the sun's irradiance (airless bodies).

@@ -50,7 +50,7 @@ struct SkyUniforms {
                        // the detail noise (as uint bits)
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
-  vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: unused
+  vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc
   vec4 surface;        // x: lowest surface (m above R: the sea level with a sea, else the deepest terrain), y: 1 with a sea
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[16];
