@@ -33,7 +33,7 @@ struct RingParams {
   vec4 radii;      // x: inner radius (m), y: outer radius (m), z: 1 / (outer − inner), w: casting body's radius (m)
   vec4 colour;     // rgb: linear albedo of the particles, w: overall opacity scale in [0, 1]
   vec4 variation;  // rgb: the second albedo the colour noise mixes in, w: sun angular radius (rad)
-  uint seedMix;    // noiseSeedMix-style mix of the description's seed
+  uint seedMix;    // ringHash(seed ^ 0x9e3779b9): the description's seed, its bits spread
   uint octaves;    // of the opacity noise, 1 .. kRingMaxOctaves
   uint gapCount;   // 0 .. kRingMaxGaps
   uint pad0;
@@ -58,8 +58,8 @@ GPU_CONST uint kRingEvalBindingParams = 0u;   // RingParams (storage, read)
 GPU_CONST uint kRingEvalBindingQueries = 1u;  // vec4[count] (storage, read)
 GPU_CONST uint kRingEvalBindingResults = 2u;  // vec4[count] (storage, written)
 GPU_CONST uint kRingEvalSample = 0u;          // query x: u, y: footprint → result ringSample(u, footprint)
-GPU_CONST uint kRingEvalShadow =
-    1u;  // query xyz: point (body frame); sun in the push → x: ringShadow, y: ringPlanetShadow
+// query xyz: point (body frame), the sun in the push → x: ringShadow, y: ringPlanetShadow
+GPU_CONST uint kRingEvalShadow = 1u;
 GPU_CONST uint kRingEvalSlant = 2u;  // query x: alpha, y: cosine → result x: ringSlantOpacity
 struct RingEvalPush {
   vec4 sun;    // xyz: toward the sun (kRingEvalShadow)
