@@ -11,6 +11,8 @@
 
 #include "terrain_surface.glsl"
 
+#include "common/rings.glsl"
+
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
 layout(location = 2) in vec4 inAttributes;
@@ -130,6 +132,11 @@ void main() {
     albedo = groundColor(height - seaLevel, slope, inAttributes.w, jitter, pixelM);
   }
   vec3 sunLight = sunIrradianceAt(height, up);
+  if (frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it
+    mat3 localToPlanet = mat3(frame.localToPlanet);
+    vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
+    sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);
+  }
   float muS = dot(up, sun);
   // Sky light, more on ground that faces the sky; airless bodies get a faint fill instead.
   vec3 skyLight = (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));

@@ -11,7 +11,7 @@
 #include <toml++/toml.h>
 
 #include "render/ring_density.h"
-#include "render/ring_description.h"
+#include "planet/ring_description.h"
 #include "test_support.h"
 
 namespace planet {
@@ -194,22 +194,22 @@ TEST(RingToml, BadValuesNameTheFieldAtItsLine) {
             "scene.toml:4: seed must be in [0, 4294967295], got -1");
   EXPECT_EQ(tomlError(edited("seed = 4000000000", "seed = 4294967296")),
             "scene.toml:4: seed must be in [0, 4294967295], got 4294967296");
-  EXPECT_EQ(tomlError(edited("opacity = 0.8", "opacity = 2")), "scene.toml:7: ring opacity must be in [0, 1], got 2");
-  EXPECT_EQ(tomlError(edited("octaves = 8", "octaves = 0")), "scene.toml:8: ring octaves must be in 1..16, got 0");
-  EXPECT_EQ(tomlError(edited("gaps = 1", "gaps = 9")), "scene.toml:9: ring gaps must be in 0..4, got 9");
+  EXPECT_EQ(tomlError(edited("opacity = 0.8", "opacity = 2")), "scene.toml:7: opacity must be in [0, 1], got 2");
+  EXPECT_EQ(tomlError(edited("octaves = 8", "octaves = 0")), "scene.toml:8: octaves must be in [1, 16], got 0");
+  EXPECT_EQ(tomlError(edited("gaps = 1", "gaps = 9")), "scene.toml:9: gaps must be in [0, 4], got 9");
   EXPECT_EQ(tomlError(edited("outer_radius_m = 1.2e8", "outer_radius_m = 9e7")),
             "scene.toml:2: ring inner_radius_m (9.2e+07) must be below outer_radius_m (9e+07)");
   EXPECT_EQ(tomlError(edited("outer_radius_m = 1.2e8", "outer_radius_m = nan")),
-            "scene.toml:3: ring outer_radius_m must be a positive finite number of metres, got nan");
+            "scene.toml:3: outer_radius_m must be a finite number, got nan");
   EXPECT_EQ(tomlError(edited("colour_variation = [0.3, 0.3, 0]", "colour_variation = [0.3, 0.3, 3]")),
-            "scene.toml:6: ring colour_variation[2] must be in [0, 1], got 3");
+            "scene.toml:6: colour_variation[2] must be in [0, 1], got 3");
   EXPECT_EQ(tomlError(edited("colour = [0.7, 0.6, 0.5]", "colour = [0.7, -1, 0.5]")),
-            "scene.toml:5: ring colour[1] must be in [0, 1], got -1");
+            "scene.toml:5: colour[1] must be in [0, 1], got -1");
   // A table built in code has no lines: the message starts with `where` alone.
   toml::table table;
   table.insert("opacity", -0.5);
   EXPECT_EQ(errorOf([&] { parseRingTable(table, "preset [bodies.rings]"); }),
-            "preset [bodies.rings]: ring opacity must be in [0, 1], got -0.5");
+            "preset [bodies.rings]: opacity must be in [0, 1], got -0.5");
 }
 
 // --- The density --------------------------------------------------------------------------------

@@ -67,11 +67,8 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  std::vector<PlanetDescription> planets;
-  for (BodyDescription& b : scene.bodies) {
-    if (cmd.seed) applySeedOffset(b.planet, *cmd.seed);
-    planets.push_back(b.planet);
-  }
+  if (cmd.seed)
+    for (BodyDescription& b : scene.bodies) applySeedOffset(b.planet, *cmd.seed);
   const std::vector<BodyState> states = sceneStateAt(scene, cmd.timeS);
   const BodyState& on = states[body];
   CameraBasis local = cameraBasis(pose, scene.bodies[body].planet.radiusM);
@@ -87,7 +84,7 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   RenderResult result;
   size_t primary = 0;
   {
-    Renderer renderer(*context, planets, settings);
+    Renderer renderer(*context, scene, settings);
     result = renderer.renderScene(view);
     primary = renderer.primaryBody();
   }

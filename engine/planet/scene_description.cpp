@@ -24,7 +24,7 @@ using toml_reader::typeName;
 
 constexpr std::string_view kTopKeys[] = {"scene", "body"};
 constexpr std::string_view kSceneKeys[] = {"name", "sun_gm_m3_s2"};
-constexpr std::string_view kBodyKeys[] = {"name", "preset", "parent", "gm_m3_s2", "orbit", "spin"};
+constexpr std::string_view kBodyKeys[] = {"name", "preset", "parent", "gm_m3_s2", "orbit", "spin", "rings"};
 constexpr std::string_view kOrbitKeys[] = {"semi_major_axis_m",      "eccentricity",     "inclination_deg",
                                            "ascending_node_deg",     "periapsis_argument_deg",
                                            "mean_anomaly_deg",       "period_s"};
@@ -106,6 +106,12 @@ BodyDescription readBody(const Context& context, const toml::table& table, size_
                                              formatNumber(b.planet.radiusM)));
   if (const toml::table* spin = optionalTable(context, table, "spin"))
     b.spin = readSpin(context, *spin, fmt::format("[body.spin] of {}", where));
+  if (const toml::table* rings = optionalTable(context, table, "rings")) {
+    b.rings = parseRingTable(*rings, context.source());
+    if (b.rings->innerRadiusM <= b.planet.radiusM)
+      context.fail(lineOf(*rings), fmt::format("the rings of {} start at {} m, inside its radius {} m", where,
+                                               formatNumber(b.rings->innerRadiusM), formatNumber(b.planet.radiusM)));
+  }
   return b;
 }
 

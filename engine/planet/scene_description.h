@@ -13,6 +13,7 @@
 
 #include "planet/orbit.h"
 #include "planet/planet_description.h"
+#include "planet/ring_description.h"
 
 namespace planet {
 
@@ -33,6 +34,7 @@ struct BodyDescription {
   double gmM3S2 = 0.0;              // gravitational parameter (0: unknown; its satellites then need period_s)
   OrbitElements orbit;              // around the parent (its period resolved)
   SpinElements spin;
+  std::optional<RingDescription> rings;  // in the body's equatorial plane
 };
 
 struct SceneDescription {

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "render/ring_pass.h"
 #include "render/sky_tables.h"
 #include "render/starfield.h"
 #include "vk/commands.h"
@@ -34,16 +35,35 @@ void validateRenderSettings(const RenderSettings& settings) {
     throw Error(fmt::format("field of view {} degrees is outside (0, {}]", settings.fovYDeg, kRenderMaxFovDeg));
 }
 
-Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings)
-    : Renderer(context, std::vector<PlanetDescription>{planet}, settings) {}
+namespace {
 
-Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& bodies, const RenderSettings& settings)
+std::vector<PlanetDescription> scenePlanets(const SceneDescription& scene) {
+  std::vector<PlanetDescription> planets;
+  for (const BodyDescription& body : scene.bodies) planets.push_back(body.planet);
+  return planets;
+}
+std::vector<std::optional<RingDescription>> sceneRings(const SceneDescription& scene) {
+  std::vector<std::optional<RingDescription>> rings;
+  for (const BodyDescription& body : scene.bodies) rings.push_back(body.rings);
+  return rings;
+}
+
+}  // namespace
+
+Renderer::Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings)
+    : Renderer(context, std::vector<PlanetDescription>{planet}, {std::nullopt}, settings) {}
+
+Renderer::Renderer(vk::Context& context, const SceneDescription& scene, const RenderSettings& settings)
+    : Renderer(context, scenePlanets(scene), sceneRings(scene), settings) {}
+
+Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& bodies,
+                   const std::vector<std::optional<RingDescription>>& rings, const RenderSettings& settings)
     : context_(context), settings_(settings) {
   validateRenderSettings(settings);
   if (bodies.empty() || bodies.size() > kMaxSceneBodies)
     throw Error(fmt::format("a renderer draws 1 to {} bodies, got {}", kMaxSceneBodies, bodies.size()));
   try {
-    createBodies(bodies);
+    createBodies(bodies, rings);
     for (const PlanetDescription& planet : bodies) {
       if (!planet.stars.enabled || !(planet.stars.brightness > 0.0)) continue;
       StarSettings stars;
@@ -66,7 +86,8 @@ Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& b
   }
 }
 
-void Renderer::createBodies(const std::vector<PlanetDescription>& planets) {
+void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
+                            const std::vector<std::optional<RingDescription>>& rings) {
   for (size_t i = 0; i < planets.size(); ++i) {
     Body body;
     body.planet = planets[i];
@@ -78,6 +99,11 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets) {
     body.terrain =
         std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
     body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky, kColorFormat);
+    if (rings[i]) {
+      body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat);
+      const gpu::RingParams shadow = ringGpuParams(*rings[i], body.planet.radiusM, kSunAngularRadiusRad);
+      body.terrain->setRingShadow(&shadow);
+    }
     bodies_.push_back(std::move(body));
   }
   composeOrder_ = {0};
@@ -94,6 +120,7 @@ void Renderer::release() {
   // Each body's passes before its tables, later bodies first.
   while (!bodies_.empty()) {
     Body& body = bodies_.back();
+    body.rings.reset();
     body.sky.reset();
     body.terrain.reset();
     body.skyTables.reset();
@@ -289,6 +316,22 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
   for (const auto& [distance, i] : farther) composeOrder_.push_back(i);
   composeOrder_.push_back(primary);
 
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    if (!bodies_[i].rings) continue;
+    const TerrainView& t = views[i];
+    RingView ring;
+    ring.viewProjection = reversedZPerspective(t.fovYRad, double(t.width) / double(t.height), nearPlane) *
+                          viewMatrix(t.camera.forward, t.camera.up);
+    ring.cameraBody = t.camera.position;
+    ring.sunBody = t.sunDirection;
+    ring.planetRadiusM = bodies_[i].planet.radiusM;
+    ring.nearPlaneM = nearPlane;
+    ring.width = t.width;
+    ring.height = t.height;
+    ring.sunIrradiance = gpu::kSunIrradiance * bodies_[i].terrain->settings().sunIntensity;
+    ring.ambient = bodies_[i].terrain->settings().ambient;
+    bodies_[i].rings->prepare(ring, slot);
+  }
   // The sky is drawn around the camera: each body's frame, also while the terrain's LOD is frozen.
   glm::dmat4 primaryViewProjection(1.0);
   glm::dmat3 primaryPlanetToLocal(1.0);
@@ -349,6 +392,9 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   // Stars first, at infinity; everything drawn later covers them.
   if (stars_) stars_->recordDraw(cmd, starsToClip_, float(settings_.height), timer);
   for (Body& body : bodies_) body.terrain->recordDraw(cmd, timer);
+  // Rings last: they blend over whatever the depth test lets them cover and write no depth.
+  for (Body& body : bodies_)
+    if (body.rings) body.rings->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
   // The compose pass reads and writes the HDR colour and samples the depth.
   vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,

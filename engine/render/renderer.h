@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ struct RenderResult {
   bool cameraRaised = false;
 };
 
+class RingPass;
 class SkyTables;
 class Starfield;
 
@@ -71,10 +73,10 @@ std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states);
 class Renderer {
  public:
   Renderer(vk::Context& context, const PlanetDescription& planet, const RenderSettings& settings);
-  // A scene: one terrain (and atmosphere, when the preset has one) per body, drawn into one
+  // A scene: one terrain (and atmosphere, when the preset has one, and rings) per body, drawn into one
   // frame with camera-relative positions and one depth buffer. The stars are those of the
   // first body whose preset has them, fixed in the scene frame.
-  Renderer(vk::Context& context, const std::vector<PlanetDescription>& bodies, const RenderSettings& settings);
+  Renderer(vk::Context& context, const SceneDescription& scene, const RenderSettings& settings);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -143,8 +145,12 @@ class Renderer {
     std::unique_ptr<SkyTables> skyTables;
     std::unique_ptr<TerrainPass> terrain;
     std::unique_ptr<SkyPass> sky;
+    std::unique_ptr<RingPass> rings;  // null without rings
   };
-  void createBodies(const std::vector<PlanetDescription>& planets);
+  Renderer(vk::Context& context, const std::vector<PlanetDescription>& planets,
+           const std::vector<std::optional<RingDescription>>& rings, const RenderSettings& settings);
+  void createBodies(const std::vector<PlanetDescription>& planets,
+                    const std::vector<std::optional<RingDescription>>& rings);
   // The frame of a camera already through the eye-height rule (which costs a full-detail CPU
   // height), with the primary body's pose of it (Prepared::camera).
   Prepared prepareFrame(const SceneView& view, size_t primary, const CameraPose& primaryPose, bool raised,

@@ -5,6 +5,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include <fmt/format.h>
+
+#include "core/error.h"
+
 namespace planet {
 namespace {
 
@@ -63,6 +67,32 @@ float ringShadowCpu(const glm::vec3& pointBody, const glm::vec3& sunBody, const 
 
 float ringPlanetShadowCpu(const glm::vec3& pointBody, const glm::vec3& sunBody, const gpu::RingParams& ring) {
   return RingKernel().ringPlanetShadow(pointBody, sunBody, ring);
+}
+
+gpu::RingParams ringGpuParams(const RingDescription& ring, double planetRadiusM, double sunAngularRadiusRad) {
+  validateRingDescription(ring);
+  if (!(std::isfinite(planetRadiusM) && planetRadiusM > 0.0))
+    throw Error(fmt::format("ringed body radius must be a positive finite number of metres, got {}",
+                            fmt::format("{:g}", planetRadiusM)));
+  if (!(std::isfinite(sunAngularRadiusRad) && sunAngularRadiusRad >= 0.0 && sunAngularRadiusRad < 1.0))
+    throw Error(fmt::format("sun angular radius must be in [0, 1) rad, got {}", fmt::format("{:g}", sunAngularRadiusRad)));
+  gpu::RingParams p{};
+  p.radii = glm::vec4(float(ring.innerRadiusM), float(ring.outerRadiusM),
+                      float(1.0 / (ring.outerRadiusM - ring.innerRadiusM)), float(planetRadiusM));
+  p.colour = glm::vec4(glm::vec3(ring.colour), float(ring.opacity));
+  p.variation = glm::vec4(glm::vec3(ring.colourVariation), float(sunAngularRadiusRad));
+  p.seedMix = ringHashCpu(ring.seed ^ 0x9e3779b9u);
+  p.octaves = ring.octaves;
+  p.gapCount = ring.gaps;
+  // Gaps at seeded radii inside the middle 60 % of the ring, the first the widest (Cassini:
+  // 4,700 km of Saturn's 62,000 km), each clearing 92-98 % of the opacity.
+  for (uint32_t g = 0; g < ring.gaps; ++g) {
+    const uint32_t h = ringHashCpu(p.seedMix + 0x632be5abu * (g + 1));
+    const double a = double(h & 0xffffu) / 65535.0, b = double(h >> 16) / 65535.0;
+    const double halfWidth = (g == 0 ? 0.02 + 0.015 * b : 0.004 + 0.008 * b);
+    p.gaps[g] = glm::vec4(float(0.2 + 0.6 * a), float(halfWidth), float(0.92 + 0.06 * b), 0.0f);
+  }
+  return p;
 }
 
 }  // namespace planet

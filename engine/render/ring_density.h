@@ -1,17 +1,22 @@
 // The CPU reference of the planetary rings: shaders/common/rings.glsl compiled as C++ (in
 // float, with -ffp-contract=off like the GLSL's `precise`), so that tests can hold ring.frag,
 // ring_eval.comp and any shader that uses ringShadow against it. The meaning of every function
-// is at its GLSL definition. Build the parameters with planet::ringGpuParams
-// (render/ring_description.h).
+// is at its GLSL definition. The parameters come from ringGpuParams below.
 #pragma once
 
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
+#include "planet/ring_description.h"
 #include "shared/ring_params.h"
 
 namespace planet {
+
+// The shaders' block for `ring` around a body of radius planetRadiusM (which casts the shadow
+// on it), lit by a sun of angular radius sunAngularRadiusRad (the penumbrae). Validates `ring`.
+gpu::RingParams ringGpuParams(const RingDescription& ring, double planetRadiusM, double sunAngularRadiusRad);
+
 
 // The shaders' integer hash (ringHash: Wellons' lowbias32), for seeding on the CPU.
 uint32_t ringHashCpu(uint32_t x);

@@ -15,7 +15,8 @@
 #include <vulkan/vulkan.h>
 
 #include "render/atmosphere_model.h"
-#include "render/ring_description.h"
+#include "planet/ring_description.h"
+#include "render/ring_density.h"
 #include "shared/ring_params.h"
 #include "shared/sky_params.h"
 #include "vk/buffer.h"

@@ -376,6 +376,10 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(gpu::kSunIrradiance * settings_.sunIntensity));
   u.water = glm::vec4(float(planet_.water.clarityM), float(planet_.water.waveWavelengthM),
                       frame_.waterDrawn ? 1.0f : 0.0f, 0.0f);
+  if (ring_) {
+    u.cameraPlanet = glm::vec4(glm::vec3(view.camera.position), 1.0f);
+    u.ring = *ring_;
+  }
   u.atmosphere = sky_.atmosphere();
   for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)];
   u.colorDeepWater = toVec4(c.deepWater);

@@ -19,6 +19,7 @@
 #include "render/camera.h"
 #include "render/patch_layout.h"
 #include "shared/render_params.h"
+#include "shared/ring_params.h"
 #include "vk/buffer.h"
 
 namespace planet::vk {
@@ -144,6 +145,8 @@ class TerrainPass {
   // Per-pixel detail from the patch textures (built on first use, after waiting for the device
   // to be idle); off, the vertex normals shade the ground (bodies a few pixels across).
   void setPatchesEnabled(bool patches) { settings_.patches = patches; }
+  // The body's rings, whose shadow darkens the ground (null: none).
+  void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).
   void setSunIntensity(double scale) { settings_.sunIntensity = scale; }
   // Fill light, as a fraction of the sun's irradiance (airless bodies).
@@ -209,6 +212,7 @@ class TerrainPass {
   bool fullPatches_ = false;  // patches_ has settings_.patchSettings (else a minimal stand-in that is never sampled)
   double maxTerrainHeightM_ = 0.0;
   double lowestSurfaceM_ = 0.0;  // the horizon cut's grazed sphere, relative to the radius (<= 0)
+  std::optional<gpu::RingParams> ring_;  // setRingShadow
 
   vk::Buffer meshVertices_;
   vk::Buffer indices_;  // the mesh's indices, then a fan to the pole for every ring

@@ -10,6 +10,7 @@
 #define PLANET_SHARED_RENDER_PARAMS_H
 
 #include "shared/gpu_types.h"
+#include "shared/ring_params.h"
 #include "shared/sky_params.h"
 #include "shared/terrain_params.h"
 
@@ -73,8 +74,10 @@ struct FrameUniforms {
   // Water waves: xy: wave vector along the face axes (1/m), z: phase at the face reference
   // point (computed in double, wrapped to ±π), w: the wave's share of the slope.
   vec4 waves[kWaterWaveCount];
+  vec4 cameraPlanet;  // xyz: the camera in the planet frame (m, float: ring shadows only), w: 1 if the body has rings
+  RingParams ring;    // the body's rings, which shadow its surface (shaders/common/rings.glsl ringShadow)
 };
-GPU_ASSERT_SIZE(FrameUniforms, 1120)
+GPU_ASSERT_SIZE(FrameUniforms, 1264)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

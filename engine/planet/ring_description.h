@@ -1,6 +1,6 @@
 // A planetary ring as a scene describes it (issue 8, point 3; seed 001 §4.5): the annulus in the
 // ringed body's equatorial plane, the seed and colours of its noise, checked strictly, read
-// from a TOML table, and turned into the block the shaders read (shared/ring_params.h).
+// from a TOML table, and turned into the block the shaders read by render/ring_density.h's ringGpuParams.
 #pragma once
 
 #include <cstdint>
@@ -39,9 +39,5 @@ void validateRingDescription(const RingDescription& ring);
 // 'opacity' must be a number, got string", "scene.toml:9: ring inner_radius_m (2e+08) must be
 // below outer_radius_m (1.4e+08)". Unknown keys and wrong types are errors.
 RingDescription parseRingTable(const toml::table& table, std::string_view where);
-
-// The shaders' block for `ring` around a body of radius planetRadiusM (which casts the shadow
-// on it), lit by a sun of angular radius sunAngularRadiusRad (the penumbrae). Validates `ring`.
-gpu::RingParams ringGpuParams(const RingDescription& ring, double planetRadiusM, double sunAngularRadiusRad);
 
 }  // namespace planet
