@@ -376,6 +376,15 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"render --camera 0,0,1e400", "", "'1e400' is not a finite number"},
       {"render --camera 0,0,-1e12", "", "camera altitude -1000000000000 m is outside"},
       {"render --camera ''", "", "camera '': '' is not a finite number"},
+      {"render --scene pluto", "", "unknown scene 'pluto' (built-in: system; or a FILE.toml)"},
+      {"render --scene system --camera Pluto:0,0,1", "", "scene 'Three worlds' has no body 'Pluto' (bodies: Giant, Terra, Moon)"},
+      {"render --scene system --camera 0,0,1", "", "--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '0,0,1'"},
+      {"render --scene system --camera Moon:95,0,1", "", "camera latitude 95 is outside [-90, 90] degrees"},
+      {"render --scene system --camera Moon:0,0,1 --look-at Moon", "", "--look-at Moon names the camera's own body"},
+      {"render --scene system --preset earth", "", "--preset and --scene exclude each other"},
+      {"render --scene system --sun 10,10", "", "--sun does not apply to --scene"},
+      {"render --look-at Terra", "", "--look-at needs --scene (it names a body of the scene)"},
+      {"render --scene {out}/missing.toml", "", "missing.toml"},
       {"render --sun 10,100", "", "sun elevation 100 is outside [-90, 90] degrees"},
       {"render --sun nan,1", "", "'nan' is not a finite number"},
       {"render --sun ''", "", "sun '': '' is not a finite number"},
@@ -531,6 +540,21 @@ TEST(Cli, RenderWritesAPngAndReportsTheFrame) {
     EXPECT_NE(run.out.find(pass), std::string::npos) << pass << "\n" << run.out;
   // 5 km below the reference sphere is below any ground: raised to eye height, with a warning.
   EXPECT_NE(run.err.find("warning: camera altitude -5000.00 m is below the ground"), std::string::npos) << run.err;
+}
+
+TEST(Cli, RenderSceneFromTheMoonLooksAtTerra) {
+  const std::filesystem::path png = tempDir() / "scene.png";
+  CommandResult run = planet("render --scene system --camera Moon:58,-134.8,-5000 --look-at Terra --time 30000 "
+                             "--size 64x36 --out " + png.string());
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(readFile(png).substr(1, 3), "PNG");
+  EXPECT_NE(run.out.find("scene 'Three worlds' at t = 30000 s"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("camera: on Moon at lat 58.0000 lon -134.8000"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("(1.70 m above the ground)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("overhead on Moon: Giant at lat "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(" rings "), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("warning: the camera was below the ground of Moon"), std::string::npos) << run.err;
 }
 
 TEST(Cli, RenderToAMissingDirectoryFailsWithoutLeavingFiles) {

@@ -1,0 +1,201 @@
+// Scenes of several bodies on lavapipe (issue 8, points 1-3 and 6): camera-relative rendering
+// far from the origin, bodies hiding each other through one depth buffer, a far body's
+// atmosphere composed without a second sun, and the built-in system's picture.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/image_file.h"
+#include "gpu_fixture.h"
+#include "planet/scene_description.h"
+#include "render/renderer.h"
+
+namespace planet::test {
+namespace {
+
+using SceneRender = GpuTest;
+
+RenderSettings smallSettings() {
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  return settings;
+}
+
+glm::dvec3 pixel(const Rgba8Image& image, uint32_t x, uint32_t y) {
+  const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+  return {double(p[0]), double(p[1]), double(p[2])};
+}
+
+// A scene from TOML text (the presets are the built-in ones).
+SceneDescription sceneFrom(const std::string& text) { return parseSceneDescription(text, "test-scene.toml"); }
+
+// The camera at `local` in body `body`'s frame, at time t, as the scene sees it.
+SceneView viewFrom(const SceneDescription& scene, double timeS, size_t body, const CameraBasis& local) {
+  const std::vector<BodyState> states = sceneStateAt(scene, timeS);
+  SceneView view;
+  const BodyState& on = states[body];
+  view.camera = {on.positionM + on.bodyToScene * local.position, on.bodyToScene * local.forward,
+                 on.bodyToScene * local.up};
+  view.bodies = sceneBodyViews(states);
+  view.timeS = timeS;
+  return view;
+}
+
+std::string moonAt(double semiMajorAxisM) {
+  return "[scene]\nname = \"far\"\n[[body]]\nname = \"M\"\npreset = \"moon\"\n[body.orbit]\nsemi_major_axis_m = " +
+         std::to_string(semiMajorAxisM) + "\nperiod_s = 1e9\nmean_anomaly_deg = 30\n[body.spin]\ntilt_deg = 10\n";
+}
+
+// The same body, camera and sun, once 1e9 m and once 1.5e11 m (1 au) from the scene's origin:
+// positions reach the GPU relative to the camera, so the pictures agree to rounding. A float
+// position at 1 au would be off by ~8 km, and the ground would jitter by whole pixels.
+TEST_F(SceneRender, ABodyFarFromTheOriginLooksAsItDoesNearIt) {
+  CameraPose pose;
+  pose.latitudeDeg = 20.0;
+  pose.longitudeDeg = -30.0;
+  pose.altitudeM = 300.0;
+  pose.headingDeg = 60.0;
+  pose.pitchDeg = -20.0;
+  Rgba8Image images[2];
+  int i = 0;
+  for (double axis : {1.0e9, 1.5e11}) {
+    const SceneDescription scene = sceneFrom(moonAt(axis));
+    Renderer renderer(context(), scene, smallSettings());
+    const CameraBasis local = cameraBasis(pose, scene.bodies[0].planet.radiusM);
+    images[i++] = renderer.renderScene(viewFrom(scene, 0.0, 0, local)).image;
+  }
+  // The sun is where it was: the ground is lit, and the two pictures are the same to a level.
+  double lit = 0.0;
+  int differing = 0, maxDifference = 0;
+  for (size_t k = 0; k < images[0].pixels.size(); ++k) {
+    const int d = std::abs(int(images[0].pixels[k]) - int(images[1].pixels[k]));
+    maxDifference = std::max(maxDifference, d);
+    differing += d > 1 ? 1 : 0;
+    lit += images[0].pixels[k];
+  }
+  EXPECT_GT(lit / double(images[0].pixels.size()), 10.0) << "the ground should be sunlit";
+  EXPECT_LE(differing, int(images[0].pixels.size() / 1000)) << "max difference " << maxDifference;
+  EXPECT_LE(maxDifference, 8);
+}
+
+// A moon between the camera and a ringed giant, with the sun behind the camera: one depth
+// buffer for bodies 2e8 m apart, so the moon covers the middle and the giant's rings show
+// around it; the moon is drawn with the giant's near plane choice not cutting it.
+TEST_F(SceneRender, ANearerBodyHidesAFartherOneAndTheRingsShowAroundIt) {
+  const SceneDescription scene = sceneFrom(R"([scene]
+name = "pair"
+[[body]]
+name = "G"
+preset = "giant"
+[body.orbit]
+semi_major_axis_m = 1e11
+period_s = 1e10
+[body.spin]
+tilt_deg = 30
+[body.rings]
+inner_radius_m = 7.45e7
+outer_radius_m = 1.368e8
+[[body]]
+name = "M"
+preset = "moon"
+parent = "G"
+[body.orbit]
+semi_major_axis_m = 2e8
+period_s = 1e8
+inclination_deg = 40
+ascending_node_deg = 90
+mean_anomaly_deg = 90
+)");
+  ASSERT_TRUE(scene.bodies[0].rings.has_value());
+  Renderer renderer(context(), scene, smallSettings());
+  const std::vector<BodyState> states = sceneStateAt(scene, 0.0);
+  // The moon 2e8 m from the giant, 40 degrees out of the reference plane (the rings open by 34
+  // degrees seen along that line); the camera 6e6 m beyond it, the sun 40 degrees off its back.
+  const glm::dvec3 toGiant = glm::normalize(states[0].positionM - states[1].positionM);
+  SceneView view;
+  view.camera.position = states[1].positionM - 6.0e6 * toGiant;
+  view.camera.forward = toGiant;
+  view.camera.up = glm::dvec3(0.0, 0.0, 1.0);
+  view.bodies = sceneBodyViews(states);
+  const RenderResult result = renderer.renderScene(view);
+  EXPECT_EQ(renderer.primaryBody(), 1u);
+  const Rgba8Image& image = result.image;
+  // Middle: the moon's sunlit grey (no warm tint of the giant or its rings).
+  const glm::dvec3 middle = pixel(image, 160, 90);
+  EXPECT_GT(middle.x, 20.0);
+  EXPECT_LT(std::abs(middle.x - middle.z), 0.2 * middle.x + 4.0) << middle.x << " " << middle.z;
+  // Beyond the moon's limb (16.8 degrees from the middle): the rings' warm light.
+  const double pixelsPerRadian = 90.0 / std::tan(0.5 * 60.0 * 3.14159265358979 / 180.0);
+  int warm = 0;
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 320; ++x) {
+      if (std::atan(std::hypot(x - 159.5, y - 89.5) / pixelsPerRadian) < 0.31) continue;
+      const glm::dvec3 c = pixel(image, uint32_t(x), uint32_t(y));
+      warm += (c.x > 40.0 && c.x > 1.15 * c.z) ? 1 : 0;
+    }
+  EXPECT_GT(warm, 50) << "the giant's rings should show beside the moon";
+}
+
+// The camera on an airless moon looking at the sun with an Earth-like world far behind: the
+// far world's atmosphere is composed (its disc shows blue) and the sun's disc is drawn once,
+// by the camera's own body: the sun is as bright as it is with an airless world there instead (the moon preset).
+TEST_F(SceneRender, AFarAtmosphereIsComposedAndTheSunIsDrawnOnce) {
+  auto system = [](const char* world) {
+    return sceneFrom(std::string(R"([scene]
+name = "sunward"
+[[body]]
+name = "W"
+preset = ")") + world + R"("
+gm_m3_s2 = 3.986e14
+[body.orbit]
+semi_major_axis_m = 1e11
+period_s = 1e10
+[[body]]
+name = "M"
+preset = "moon"
+parent = "W"
+[body.orbit]
+semi_major_axis_m = 6e7
+period_s = 1e8
+mean_anomaly_deg = 180
+)");
+  };
+  double sunPeak[2] = {0.0, 0.0};
+  int k = 0;
+  for (const char* world : {"earth", "moon"}) {
+    const SceneDescription scene = system(world);
+    Renderer renderer(context(), scene, smallSettings());
+    const std::vector<BodyState> states = sceneStateAt(scene, 0.0);
+    SceneView view;
+    // 3e6 m from the moon's centre on its sunward side, looking at the sun.
+    view.camera.position = states[1].positionM * (1.0 - 3.0e6 / glm::length(states[1].positionM));
+    view.camera.forward = glm::normalize(-states[1].positionM);
+    view.camera.up = glm::dvec3(0.0, 0.0, 1.0);
+    view.bodies = sceneBodyViews(states);
+    const RenderResult toSun = renderer.renderScene(view, true);
+    for (const glm::vec4& texel : toSun.hdr) sunPeak[k] = std::max(sunPeak[k], double(texel.r));
+    if (k == 0) {
+      // The world itself, from 2e7 m beyond the moon toward it (the moon behind the camera).
+      SceneView back = view;
+      back.camera.position = states[1].positionM + 2.0e7 * glm::normalize(states[0].positionM - states[1].positionM);
+      back.camera.forward = glm::normalize(states[0].positionM - back.camera.position);
+      const Rgba8Image image = renderer.renderScene(back).image;
+      int blue = 0;
+      for (uint32_t y = 0; y < 180; ++y)
+        for (uint32_t x = 0; x < 320; ++x) {
+          const glm::dvec3 c = pixel(image, x, y);
+          blue += (c.z > 30.0 && c.z > 1.2 * c.x) ? 1 : 0;
+        }
+      EXPECT_GT(blue, 200) << "the world's sea and sky should show blue";
+    }
+    ++k;
+  }
+  ASSERT_GT(sunPeak[1], 100.0) << "the sun's disc should be in the picture";
+  EXPECT_NEAR(sunPeak[0] / sunPeak[1], 1.0, 0.02) << "a second compose pass drew the sun again";
+}
+
+}  // namespace
+}  // namespace planet::test
