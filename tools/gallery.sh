@@ -35,4 +35,13 @@ render night_2m --camera 37.942,163.764,0,270,25 --sun 275,-12
 render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
 render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
 render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30
+# The system (planet render --scene system, issue 8): from the Moon's surface to Terra's, at one
+# time: Terra in the Moon's sky, Terra from 1,000 km above the Moon and from 30,000 km, 400 km
+# over Terra, and the ringed giant with the Moon in Terra's afternoon sky.
+t=66500
+render system_1_moon_ground --scene system --time $t --camera Moon:1,162,0 --look-at Terra
+render system_2_moon_1000km --scene system --time $t --camera Moon:1,162,1e6 --look-at Terra
+render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,3e7,0,-90
+render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
+render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
 echo "gallery: done ($out)"

@@ -113,7 +113,10 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
     overhead += fmt::format("{}{} at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ", scene.bodies[i].name,
                             std::asin(d.z) * 180.0 / std::numbers::pi, std::atan2(d.y, d.x) * 180.0 / std::numbers::pi);
   }
-  if (!overhead.empty()) fmt::print("overhead on {}: {}\n", scene.bodies[primary].name, overhead);
+  const glm::dvec3 sun = glm::normalize(sceneToPrimary * -states[primary].positionM);
+  overhead += fmt::format("{}the sun at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ",
+                          std::asin(sun.z) * 180.0 / std::numbers::pi, std::atan2(sun.y, sun.x) * 180.0 / std::numbers::pi);
+  fmt::print("overhead on {}: {}\n", scene.bodies[primary].name, overhead);
   printTimings(result);
   return finishWithValidation(*context, 0);
 }
