@@ -44,4 +44,5 @@ render system_2_moon_1000km --scene system --time $t --camera Moon:1,162,1e6 --l
 render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,3e7,0,-90
 render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
 render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
+render system_giant --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 20
 echo "gallery: done ($out)"
