@@ -19,7 +19,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-read -ra targets <<<"${FUZZ_TARGETS:-preset points camera_path}"
+read -ra targets <<<"${FUZZ_TARGETS:-preset points camera_path scene}"
 merge=0
 if [[ ${1:-} == --merge ]]; then
   merge=1
@@ -72,7 +72,7 @@ failed=()
 for target in "${targets[@]}"; do
   exe=$build/tests/fuzz/planet_fuzz_$target
   if [[ ! -x $exe ]]; then
-    echo "fuzz: no target '$target' (known: preset points camera_path)" >&2
+    echo "fuzz: no target '$target' (known: preset points camera_path scene)" >&2
     exit 2
   fi
   override=FUZZ_SECONDS_$target

@@ -1,6 +1,7 @@
 #include "planet/scene_description.h"
 
 #include <filesystem>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -126,6 +127,33 @@ std::vector<BodyState> sceneStateAt(const SceneDescription& scene, double timeS)
     states[i].bodyToScene = bodyToScene(body.spin, timeS);
   }
   return states;
+}
+
+size_t relativelyNearestBody(std::span<const double> radiiM, std::span<const glm::dvec3> centresM,
+                             const glm::dvec3& point) {
+  if (radiiM.empty() || radiiM.size() != centresM.size())
+    throw Error(fmt::format("nearest body of {} radii and {} centres", radiiM.size(), centresM.size()));
+  size_t best = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < radiiM.size(); ++i) {
+    const double relative = (glm::length(point - centresM[i]) - radiiM[i]) / radiiM[i];
+    if (relative < nearest) {
+      nearest = relative;
+      best = i;
+    }
+  }
+  return best;
+}
+
+size_t sceneReferenceBody(const SceneDescription& scene, const std::vector<BodyState>& states,
+                          const glm::dvec3& point) {
+  std::vector<double> radii;
+  std::vector<glm::dvec3> centres;
+  for (size_t i = 0; i < scene.bodies.size() && i < states.size(); ++i) {
+    radii.push_back(scene.bodies[i].planet.radiusM);
+    centres.push_back(states[i].positionM);
+  }
+  return relativelyNearestBody(radii, centres, point);
 }
 
 SceneDescription parseSceneDescription(std::string_view text, const std::string& sourceName,

@@ -51,6 +51,13 @@ struct BodyState {
 };
 std::vector<BodyState> sceneStateAt(const SceneDescription& scene, double timeS);
 
+// The body whose surface is nearest `point` relative to its size, (distance − radius) / radius
+// smallest: the camera's own body, whose ground it stands on and whose frame it flies in.
+size_t relativelyNearestBody(std::span<const double> radiiM, std::span<const glm::dvec3> centresM,
+                             const glm::dvec3& point);
+size_t sceneReferenceBody(const SceneDescription& scene, const std::vector<BodyState>& states,
+                          const glm::dvec3& point);
+
 // `sourceName` names the text in messages; presets given as relative paths are read from
 // `baseDirectory` (the scene file's folder; empty: the working directory).
 SceneDescription parseSceneDescription(std::string_view toml, const std::string& sourceName,

@@ -236,16 +236,13 @@ Renderer::Prepared Renderer::prepareScene(const SceneView& requested, uint32_t s
   if (requested.bodies.size() != bodies_.size())
     throw Error(fmt::format("scene view has {} bodies, the renderer {}", requested.bodies.size(), bodies_.size()));
   // The camera's own body: the one whose surface is nearest relative to its size.
-  size_t primary = 0;
-  double nearest = std::numeric_limits<double>::infinity();
+  std::vector<double> radii;
+  std::vector<glm::dvec3> centres;
   for (size_t i = 0; i < bodies_.size(); ++i) {
-    const double radius = bodies_[i].planet.radiusM;
-    const double relative = (glm::length(requested.camera.position - requested.bodies[i].positionM) - radius) / radius;
-    if (relative < nearest) {
-      nearest = relative;
-      primary = i;
-    }
+    radii.push_back(bodies_[i].planet.radiusM);
+    centres.push_back(requested.bodies[i].positionM);
   }
+  const size_t primary = relativelyNearestBody(radii, centres, requested.camera.position);
   // The eye-height rule on that body, in its frame: a camera below its ground is raised along
   // the vertical, its view direction kept.
   const SceneBodyView& body = requested.bodies[primary];
