@@ -90,6 +90,29 @@ TEST(Viewer, DescentPathDrawsThePlanetWithoutValidationMessagesOrLeaks) {
                              << ground.r << "," << ground.g << "," << ground.b;
 }
 
+// Issue 8: the viewer flies from the Moon's surface to Terra's (--travel, as the T key does),
+// the reference body changing once on the way, without validation messages.
+TEST(Viewer, TravelsFromTheMoonToTerraInAScene) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb)";
+  const fs::path shot = tempDir() / "travel.png";
+  const planet::ProcessResult run = viewUnderXvfb(
+      {"--validation", "view", "--scene", "system", "--camera", "Moon:1,162,-1e5,0,30", "--travel", "Terra", "--time",
+       "66500", "--size", "320x180", "--quality", "low", "--vsync", "off", "--frames", "600", "--hide-ui",
+       "--screenshot", shot.string()});
+  if (noDevice(run)) GTEST_SKIP() << run.err;
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  EXPECT_EQ(run.err.find("VUID"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("now flying at Terra (from Moon)"), std::string::npos) << run.err;
+  const std::regex arrived(R"(scene: at Terra \(([0-9.]+) m above its ground\) after 1 change\(s\) of body)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.out, m, arrived)) << run.out;
+  // With --frames every frame steps 1/60 s: ~7 s of flight at the autopilot's speed reach
+  // Terra and stop the autopilot less than 1 km above its ground.
+  EXPECT_LT(std::stod(m[1].str()), 1000.0) << run.out;
+  const planet::Rgba8Image image = planet::readPng(shot.string());
+  EXPECT_EQ(image.width, 160u);
+}
+
 bool haveXdotool() { return planet::runProcess({"sh", "-c", "command -v xdotool"}, "").exitCode == 0; }
 
 TEST(Viewer, SurvivesAResizeStormAndSavesAScreenshotOnF12) {

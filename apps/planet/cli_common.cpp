@@ -145,4 +145,14 @@ int finishWithValidation(const vk::Context& context, int exitCode) {
   return exitCode;
 }
 
+SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& text) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos)
+    throw Error(fmt::format("--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '{}'", text));
+  SceneCamera camera;
+  camera.body = sceneBodyIndex(scene, text.substr(0, colon));
+  camera.pose = parseCameraPose(std::string_view(text).substr(colon + 1));
+  return camera;
+}
+
 }  // namespace planet::cli

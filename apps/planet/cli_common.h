@@ -12,6 +12,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "planet/scene_description.h"
+#include "render/camera.h"
 #include "vk/context.h"
 
 namespace planet {
@@ -68,6 +70,14 @@ void checkOutputFile(const std::string& option, const std::string& path);
 // --seed S (render, height, export): every layer's seed becomes (seed + S) mod 2^32, another
 // planet of the same kind. An S above 4294967295 is a UsageError naming it.
 void applySeedOffset(PlanetDescription& planet, uint64_t seed);
+
+// --camera with --scene: "BODY:LAT,LON,ALT_M[,HEADING,PITCH]" (throws planet::Error naming the
+// bad text, an unknown body or a bad pose).
+struct SceneCamera {
+  size_t body = 0;
+  CameraPose pose;
+};
+SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& text);
 
 // A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
 // characters in the message (a newline inside a quoted argument) become '?', so that it stays

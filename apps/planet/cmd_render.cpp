@@ -54,11 +54,9 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   try {
     scene = resolveScene(cmd.scene);
     if (sub.count("--camera")) {
-      const size_t colon = cmd.camera.find(':');
-      if (colon == std::string::npos)
-        throw Error(fmt::format("--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '{}'", cmd.camera));
-      body = sceneBodyIndex(scene, cmd.camera.substr(0, colon));
-      pose = parseCameraPose(std::string_view(cmd.camera).substr(colon + 1));
+      const SceneCamera camera = parseSceneCamera(scene, cmd.camera);
+      body = camera.body;
+      pose = camera.pose;
     }
     if (sub.count("--look-at")) {
       target = sceneBodyIndex(scene, cmd.lookAt);

@@ -15,6 +15,10 @@ namespace {
 
 struct ViewCommand {
   std::string preset{kDefaultPresetName};
+  std::string scene;
+  std::string travel;
+  double timeS = 0.0;
+  double timeScale = 1.0;
   std::string camera;
   std::string sun;
   std::string size = "1280x720";
@@ -46,6 +50,37 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   options.hideUi = cmd.hideUi;
   options.device = global.device;
   options.validation = global.validation;
+  if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
+    throw UsageError(fmt::format("--time must be a number of seconds within ±1e9, got {}", cmd.timeS));
+  if (!(cmd.timeScale >= 0.0 && cmd.timeScale <= 1e6))
+    throw UsageError(fmt::format("--time-scale must be in [0, 1e6], got {}", cmd.timeScale));
+  if (sub.count("--scene")) {
+    if (sub.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
+    if (sub.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+    if (sub.count("--path")) throw UsageError("--path does not apply to --scene (camera paths are on one planet)");
+    try {
+      SceneDescription scene = resolveScene(cmd.scene);
+      if (sub.count("--camera")) {
+        const SceneCamera camera = parseSceneCamera(scene, cmd.camera);
+        options.sceneBody = camera.body;
+        options.camera = camera.pose;
+      }
+      if (sub.count("--travel")) {
+        options.travelTo = sceneBodyIndex(scene, cmd.travel);
+        if (*options.travelTo == options.sceneBody)
+          throw Error(fmt::format("--travel {} names the body the camera starts on", cmd.travel));
+      }
+      if (sub.count("--quality")) options.quality = parseViewQuality(cmd.quality);
+      options.planet = scene.bodies[options.sceneBody].planet;
+      options.scene = std::move(scene);
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
+    options.sceneTimeS = cmd.timeS;
+    options.timeScale = cmd.timeScale;
+    return view::runViewer(options);
+  }
+  if (sub.count("--travel")) throw UsageError("--travel needs --scene (it names a body of the scene)");
   try {
     options.planet = resolvePreset(cmd.preset);  // a bad preset is reported before a window opens
     // Given but empty is an error too ("--camera ''"), not the default.
@@ -66,8 +101,14 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   CLI::App* sub = app.add_subcommand("view", "Fly around a planet in a window (real time)");
   sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
       ->capture_default_str();
+  sub->add_option("--scene", cmd->scene, "Fly through a scene of several bodies: built-in (system) or a .toml file");
   sub->add_option("--camera", cmd->camera,
-                  "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]");
+                  "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]; "
+                  "with --scene BODY:LAT,LON,ALT_M[,HEADING,PITCH] [default: the first body]");
+  sub->add_option("--time", cmd->timeS, "With --scene: the scene time to start at, seconds")->capture_default_str();
+  sub->add_option("--time-scale", cmd->timeScale, "With --scene: scene seconds per real second")
+      ->capture_default_str();
+  sub->add_option("--travel", cmd->travel, "With --scene: start travelling to this body at once (as T does)");
   sub->add_option("--sun", cmd->sun,
                   "AZIMUTH,ELEVATION in degrees, seen from the start's ground point [default: 135,35]");
   sub->add_option("--size", cmd->size, "Window size WIDTHxHEIGHT in pixels")->capture_default_str();

@@ -34,6 +34,7 @@
 #include "planet/preset_writer.h"
 #include "planet/terrain_height.h"
 #include "render/flight_camera.h"
+#include "render/scene_flight.h"
 #include "render/renderer.h"
 #include "view/viewer_ui.h"
 #include "vk/commands.h"
@@ -112,7 +113,10 @@ class Viewer {
   VkDescriptorPool uiPool_ = VK_NULL_HANDLE;
   bool imguiGlfw_ = false, imguiVulkan_ = false;
   std::unique_ptr<Renderer> renderer_;
-  std::unique_ptr<FlightCamera> camera_;
+  std::unique_ptr<FlightCamera> camera_;  // one planet
+  std::unique_ptr<SceneFlight> flight_;   // a scene (its camera is that of the body it flies at)
+  double sceneTimeS_ = 0.0;
+  FlightCamera& camera() { return flight_ ? flight_->camera() : *camera_; }
   ViewerUi ui_;
   ViewerSettings built_;  // what the current renderer was built from (planet, quality, mesh, view)
   bool swapchainStale_ = false;
@@ -158,6 +162,19 @@ void Viewer::construct() {
   settings_.clouds = settings_.planet.clouds.enabled;
   settings_.water = settings_.planet.hasOcean;
 
+  if (options.scene) {
+    // The panel shows the body the camera starts on; the scene's presets are not edited.
+    settings_.planet = options.scene->bodies[options.sceneBody].planet;
+    sceneTimeS_ = options.sceneTimeS;
+    flight_ = std::make_unique<SceneFlight>(*options.scene, options.sceneBody, options.camera.value_or(CameraPose{}),
+                                            sceneTimeS_);
+    if (options.travelTo) flight_->travelTo(*options.travelTo);
+    createSwapchainResources();
+    createUi();
+    buildRenderer();
+    if (options.hideUi) ui_.togglePanel();
+    return;
+  }
   const PlanetDescription& planet = settings_.planet;
   const bool ocean = planet.hasOcean;
   const double seaLevel = planet.seaLevelM;
@@ -168,10 +185,10 @@ void Viewer::construct() {
   CameraPose start = options.camera.value_or(CameraPose{});
   if (options.path) start = cameraPoseAt(sampleCameraPath(*options.path, options.path->startS()), planet);
   // A view toward the horizon is free flight; a view down at the planet is orbit.
-  if (options.path || start.pitchDeg > camera_->settings().orbitMaxPitchDeg) camera_->setMode(FlightMode::Free);
-  camera_->setPose(start);
+  if (options.path || start.pitchDeg > camera().settings().orbitMaxPitchDeg) camera().setMode(FlightMode::Free);
+  camera().setPose(start);
   // The sun stays where --sun puts it for the starting camera: fixed in the planet frame.
-  const glm::dvec3 sun = sunDirection(options.sun, camera_->pose());
+  const glm::dvec3 sun = sunDirection(options.sun, camera().pose());
   settings_.sunLatitudeDeg = degrees(std::asin(std::clamp(sun.z, -1.0, 1.0)));
   settings_.sunLongitudeDeg = degrees(std::atan2(sun.y, sun.x));
 
@@ -377,8 +394,14 @@ void Viewer::buildRenderer() {
   waitIdle();
   renderer_.reset();  // free its memory before the new one takes its own
   const auto start = std::chrono::steady_clock::now();
-  renderer_ =
-      std::make_unique<Renderer>(*context_, viewPlanet(settings_.planet, settings_.quality), currentRenderSettings());
+  if (flight_) {
+    SceneDescription scene = flight_->scene();
+    for (BodyDescription& body : scene.bodies) body.planet = viewPlanet(body.planet, settings_.quality);
+    renderer_ = std::make_unique<Renderer>(*context_, scene, currentRenderSettings());
+  } else {
+    renderer_ =
+        std::make_unique<Renderer>(*context_, viewPlanet(settings_.planet, settings_.quality), currentRenderSettings());
+  }
   applyTerrainToggles();
   built_ = settings_;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -387,10 +410,12 @@ void Viewer::buildRenderer() {
 }
 
 void Viewer::applyTerrainToggles() {
-  TerrainPass& terrain = renderer_->terrain();
-  terrain.setWireframe(settings_.wireframe);
-  terrain.setWaterEnabled(settings_.water);
-  terrain.setFreezeLod(settings_.freezeLod);
+  for (size_t body = 0; body < renderer_->bodyCount(); ++body) {
+    TerrainPass& terrain = renderer_->terrain(body);
+    terrain.setWireframe(settings_.wireframe);
+    terrain.setWaterEnabled(settings_.water);
+    terrain.setFreezeLod(settings_.freezeLod);
+  }
 }
 
 void Viewer::waitForFrame(FrameSlot& slot) {
@@ -464,7 +489,7 @@ FlightInput Viewer::readInput(double dtS) {
       input.lookX = dx;
       input.lookY = dy;
     } else if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS &&
-               camera_->mode() == FlightMode::Orbit) {
+               camera().mode() == FlightMode::Orbit) {
       // Dragging the ground: a drag across the window moves about one view height.
       const double perPixel = 2.0 / std::max(1.0, double(swapchain_.extent.height)) / std::max(dtS, 1e-3);
       input.forward += dy * perPixel;
@@ -487,10 +512,10 @@ void Viewer::saveScreenshot(const std::string& path) {
 }
 
 void Viewer::handleRequests(UiRequests& r) {
-  if (r.toggleMode) camera_->setMode(camera_->mode() == FlightMode::Orbit ? FlightMode::Free : FlightMode::Orbit);
+  if (r.toggleMode) camera().setMode(camera().mode() == FlightMode::Orbit ? FlightMode::Free : FlightMode::Orbit);
   if (r.goTo) {
     try {
-      camera_->goTo(r.goToLatDeg, r.goToLonDeg, r.goToAltitudeM);
+      camera().goTo(r.goToLatDeg, r.goToLonDeg, r.goToAltitudeM);
       status_ = fmt::format("flying to {:.4f}, {:.4f}, {:.0f} m", r.goToLatDeg, r.goToLonDeg, r.goToAltitudeM);
     } catch (const Error& e) {
       status_ = e.what();
@@ -571,7 +596,8 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
 
   const double timeS = settings_.timeS;
   const glm::dvec3 sun = sunFromSubsolar(settings_.sunLatitudeDeg, settings_.sunLongitudeDeg);
-  const Renderer::Prepared prepared = renderer_->prepare(camera_->pose(), sun, timeS, slotIndex);
+  const Renderer::Prepared prepared = flight_ ? renderer_->prepareScene(flight_->view(), slotIndex)
+                                             : renderer_->prepare(camera().pose(), sun, timeS, slotIndex);
   lastFrame_ = prepared.terrain;
 
   VK_CHECK(vkResetFences(context_->device, 1, &slot.fence));
@@ -695,15 +721,39 @@ int Viewer::run() {
     if (pressed(GLFW_KEY_F12) || pressed(GLFW_KEY_P)) requests.screenshot = true;
 
     // Camera: the path while it plays, else the user's input.
-    const FlightInput input = readInput(dt);
+    // With --frames (a scripted run) every frame steps 1/60 s, so that the run is the same on
+    // any machine; otherwise the wall clock's.
+    const FlightInput input = readInput(options_.frames > 0 ? 1.0 / 60.0 : dt);
     bool pathPlaying = false;
     if (options_.path) {
       const CameraPath& path = *options_.path;
       const double t = options_.frames > 0 ? frameTimeS(path, frame, options_.frames) : path.startS() + (now - startS);
       pathPlaying = t <= path.endS();
-      if (pathPlaying) camera_->setPose(cameraPoseAt(sampleCameraPath(path, t), settings_.planet));
+      if (pathPlaying) camera().setPose(cameraPoseAt(sampleCameraPath(path, t), settings_.planet));
     }
-    if (!pathPlaying) camera_->update(input);
+    if (flight_) {
+      const size_t before = flight_->referenceBody();
+      if (pressed(GLFW_KEY_T)) {
+        // The next body after the one flown to last (or after the camera's own).
+        const size_t count = flight_->scene().bodies.size();
+        size_t next = (flight_->travelTarget().value_or(before) + 1) % count;
+        if (next == before) next = (next + 1) % count;
+        if (count > 1) flight_->travelTo(next);
+      }
+      sceneTimeS_ += (options_.frames > 0 ? 1.0 / 60.0 : dt) * options_.timeScale;
+      flight_->update(input, sceneTimeS_);
+      const SceneDescription& scene = flight_->scene();
+      if (flight_->referenceBody() != before) {
+        settings_.planet = scene.bodies[flight_->referenceBody()].planet;
+        logInfo("now flying at {} (from {})", scene.bodies[flight_->referenceBody()].name, scene.bodies[before].name);
+      }
+      status_ = flight_->travelTarget()
+                    ? fmt::format("{}: travelling to {} (T: next body)", scene.bodies[flight_->referenceBody()].name,
+                                  scene.bodies[*flight_->travelTarget()].name)
+                    : fmt::format("{} (T: travel to the next body)", scene.bodies[flight_->referenceBody()].name);
+    } else if (!pathPlaying) {
+      camera().update(input);
+    }
     if (settings_.animate) settings_.timeS += options_.frames > 0 ? 1.0 / 60.0 : dt;
     if (settings_.sunMoves) {
       settings_.sunLongitudeDeg -= 360.0 * (options_.frames > 0 ? 1.0 / 60.0 : dt) / settings_.dayLengthS;
@@ -714,24 +764,24 @@ int Viewer::run() {
     frameTimesMs_.push_back(float(dt * 1000.0));
     while (frameTimesMs_.size() > kFrameGraphLength) frameTimesMs_.pop_front();
     HudData hud;
-    settings_.cameraLongitudeDeg = camera_->pose().longitudeDeg;
+    settings_.cameraLongitudeDeg = camera().pose().longitudeDeg;
     hud.device = context_->info.name;
     std::vector<double> recent(frameTimesMs_.begin(), frameTimesMs_.end());
     const double medianMs = recent.empty() ? 0.0 : percentile(recent, 50.0);
     hud.fps = medianMs > 0.0 ? 1000.0 / medianMs : 0.0;
     hud.frameTimesMs = &frameTimesMs_;
     hud.passes = passes_;
-    const CameraPose& pose = camera_->pose();
+    const CameraPose& pose = camera().pose();
     hud.altitudeM = pose.altitudeM;
-    hud.heightAboveGroundM = camera_->heightAboveGroundM();
+    hud.heightAboveGroundM = camera().heightAboveGroundM();
     hud.latitudeDeg = pose.latitudeDeg;
     hud.longitudeDeg = pose.longitudeDeg;
     hud.metresPerVertex = lastFrame_.metresPerVertexAtNadir;
     hud.triangles = lastFrame_.triangles;
     hud.renderWidth = renderer_->settings().width;
     hud.renderHeight = renderer_->settings().height;
-    hud.mode = camera_->mode();
-    hud.speedMps = camera_->speedMps();
+    hud.mode = camera().mode();
+    hud.speedMps = camera().speedMps();
     hud.pathPlaying = pathPlaying;
     hud.status = status_;
     ImGui_ImplVulkan_NewFrame();
@@ -761,6 +811,10 @@ int Viewer::run() {
                context_->info.name, percentile(frameMs, 50.0), 1000.0 / percentile(frameMs, 50.0),
                percentile(frameMs, 95.0), percentile(frameMs, 100.0));
   fmt::print("swapchain recreated {} times (resize, minimise, out of date)\n", swapchainRecreations_);
+  if (flight_)
+    fmt::print("scene: at {} ({:.1f} m above its ground) after {} change(s) of body, scene time {:.1f} s\n",
+               flight_->scene().bodies[flight_->referenceBody()].name, flight_->camera().heightAboveGroundM(),
+               flight_->switches(), sceneTimeS_);
   if (frame >= kWarmupFrames)
     fmt::print(
         "memory after frame {}: {} allocations, {} bytes used, {} blocks, RSS {} KiB; after frame {}: {} allocations, "

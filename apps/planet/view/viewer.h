@@ -8,6 +8,7 @@
 #include <string>
 
 #include "planet/planet_description.h"
+#include "planet/scene_description.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/view_quality.h"
@@ -26,6 +27,14 @@ struct ViewOptions {
   std::string screenshot;              // save the last frame here (PNG, without the panel)
   std::optional<CameraPath> path;      // play this camera path (with `frames`: spread over them)
   bool hideUi = false;                 // start with the panel hidden (F2 shows it)
+  // A scene of several bodies instead of `planet` (planet view --scene): the camera starts on
+  // body `sceneBody` at `camera`, the scene's clock at sceneTimeS, running timeScale times real
+  // time; T travels to the next body. travelTo starts the autopilot at once (tests, demos).
+  std::optional<SceneDescription> scene;
+  size_t sceneBody = 0;
+  double sceneTimeS = 0.0;
+  double timeScale = 1.0;
+  std::optional<size_t> travelTo;
   // Vulkan context.
   std::string device;
   bool validation = false;

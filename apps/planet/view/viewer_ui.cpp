@@ -81,6 +81,7 @@ const char* viewerKeyHelp() {
          "  left drag in orbit moves over the ground; the wheel multiplies the height by 0.85 a step\n"
          "W/S forward/back, A/D left/right, E/Space up, Q/C down; Shift 4x faster, Alt 4x slower\n"
          "Tab switches orbit / free flight; G flies to the go-to point of the panel\n"
+         "T (planet view --scene) travels to the next body of the scene; looking around takes over\n"
          "F1 this help, F2 hides the panel, F12 or P saves a screenshot (without the panel), Esc quits";
 }
 
