@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/scene_description.h"
+#include "render/atmosphere_model.h"
 #include "render/renderer.h"
+#include "render/ring_density.h"
 
 namespace planet::test {
 namespace {
@@ -195,6 +198,96 @@ mean_anomaly_deg = 180
   }
   ASSERT_GT(sunPeak[1], 100.0) << "the sun's disc should be in the picture";
   EXPECT_NEAR(sunPeak[0] / sunPeak[1], 1.0, 0.02) << "a second compose pass drew the sun again";
+}
+
+// The rings shadow the giant (terrain.frag's ringShadow): on the giant's sunlit face, pixels
+// whose sunward ray crosses a dense part of the rings (the CPU reference of the same function
+// says so) are darker, for the same sun angle, than pixels in full sun. Pixels with the
+// rings in front of them are left out.
+TEST_F(SceneRender, TheRingsShadowTheGiant) {
+  const std::string giant = R"([scene]
+name = "ringed"
+[[body]]
+name = "G"
+preset = "giant"
+[body.orbit]
+semi_major_axis_m = 1e11
+period_s = 1e12
+mean_anomaly_deg = 90
+[body.spin]
+tilt_deg = 26.7
+)";
+  const std::string rings = "[body.rings]\ninner_radius_m = 7.45e7\nouter_radius_m = 1.368e8\nseed = 7\n";
+  const SceneDescription scene = sceneFrom(giant + rings);
+  RenderSettings settings = smallSettings();
+  settings.fovYDeg = 30.0;
+  const std::vector<BodyState> states = sceneStateAt(scene, 0.0);
+  const glm::dmat3 toBody = glm::transpose(states[0].bodyToScene);
+  const glm::dvec3 sunBody = toBody * glm::normalize(-states[0].positionM);
+  // From the sun's side, 21 degrees south of the rings: their shadow on the southern half shows,
+  // the near half of the rings crosses the northern one.
+  const glm::dvec3 eyeBody = 3.0e8 * glm::normalize(sunBody - 0.8 * glm::dvec3(0.0, 0.0, 1.0));
+  SceneView view;
+  view.camera.position = states[0].positionM + states[0].bodyToScene * eyeBody;
+  view.camera.forward = glm::normalize(states[0].positionM - view.camera.position);
+  const glm::dvec3 pole = states[0].bodyToScene * glm::dvec3(0.0, 0.0, 1.0);
+  view.camera.up = glm::normalize(pole - glm::dot(pole, view.camera.forward) * view.camera.forward);
+  view.bodies = sceneBodyViews(states);
+  // The same view with and without the rings: the giant's colours cancel pixel by pixel.
+  std::vector<glm::vec4> withRings, without;
+  {
+    Renderer renderer(context(), scene, settings);
+    withRings = renderer.renderScene(view, true).hdr;
+  }
+  {
+    Renderer renderer(context(), sceneFrom(giant), settings);
+    without = renderer.renderScene(view, true).hdr;
+  }
+
+  const double radius = scene.bodies[0].planet.radiusM;
+  const gpu::RingParams ring = ringGpuParams(*scene.bodies[0].rings, radius, kSunAngularRadiusRad);
+  const glm::dvec3 forward = toBody * view.camera.forward, up = toBody * view.camera.up;
+  const glm::dvec3 right = glm::cross(forward, up);
+  const double tanHalf = std::tan(0.5 * settings.fovYDeg * 3.14159265358979 / 180.0);
+  std::vector<double> shadowedRatio, litRatio, expected;
+  for (uint32_t y = 0; y < settings.height; ++y)
+    for (uint32_t x = 0; x < settings.width; ++x) {
+      const double ndcX = (x + 0.5) / settings.width * 2.0 - 1.0, ndcY = 1.0 - (y + 0.5) / settings.height * 2.0;
+      const glm::dvec3 dir = glm::normalize(forward + ndcX * tanHalf * settings.width / settings.height * right +
+                                            ndcY * tanHalf * up);
+      // The ray against the giant's sphere (its heights are a few km: flat at this distance).
+      const double b = glm::dot(eyeBody, dir), c = glm::dot(eyeBody, eyeBody) - radius * radius;
+      if (b * b - c <= 0.0) continue;
+      const double t = -b - std::sqrt(b * b - c);
+      const glm::dvec3 point = eyeBody + t * dir;
+      // Leave out pixels with the rings in front (or near their edge) and the limb.
+      const double tPlane = -eyeBody.z / dir.z;
+      if (tPlane > 0.0 && tPlane < t) {
+        const double r = glm::length(glm::dvec2(eyeBody.x + tPlane * dir.x, eyeBody.y + tPlane * dir.y));
+        if (r > 0.95 * 7.45e7 && r < 1.05 * 1.368e8) continue;
+      }
+      if (glm::dot(point / radius, sunBody) < 0.3 || glm::dot(point / radius, -dir) < 0.3) continue;
+      const size_t i = size_t(y) * settings.width + x;
+      const double lit = without[i].r + without[i].g + without[i].b;
+      if (!(lit > 0.0)) continue;
+      const double ratio = (withRings[i].r + withRings[i].g + withRings[i].b) / lit;
+      const float shadow = ringShadowCpu(glm::vec3(point), glm::vec3(sunBody), ring);
+      if (shadow < 0.6f) {
+        shadowedRatio.push_back(ratio);
+        expected.push_back(shadow);
+      }
+      if (shadow > 0.999f) litRatio.push_back(ratio);
+    }
+  ASSERT_GT(shadowedRatio.size(), 100u) << "the view should show the shadow band";
+  ASSERT_GT(litRatio.size(), 100u);
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  // In full sun the rings change nothing; in their shadow the light drops as the CPU says
+  // (the fill light, 1 % of the sun, is not shadowed).
+  EXPECT_NEAR(median(litRatio), 1.0, 0.02);
+  EXPECT_NEAR(median(shadowedRatio), median(expected), 0.06) << "expected transmittance " << median(expected);
 }
 
 }  // namespace
