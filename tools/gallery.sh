@@ -39,7 +39,7 @@ render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30
 # time: Terra in the Moon's sky, Terra from 1,000 km above the Moon and from 30,000 km, 400 km
 # over Terra, and the ringed giant with the Moon in Terra's afternoon sky.
 t=66500
-render system_1_moon_ground --scene system --time $t --camera Moon:1,162,0 --look-at Terra
+render system_1_moon_ground --scene system --time $t --camera Moon:1,162,-1e5,88.4,14
 render system_2_moon_1000km --scene system --time $t --camera Moon:1,162,1e6 --look-at Terra
 render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,3e7,0,-90
 render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
