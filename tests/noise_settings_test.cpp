@@ -25,6 +25,7 @@ TEST(NoiseSettings, DefaultsMatchTheSpecification) {
   EXPECT_EQ(defaultOffset(NoiseType::Hybrid), 0.7);
   EXPECT_EQ(defaultOffset(NoiseType::Hetero), 0.7);
   EXPECT_EQ(defaultOffset(NoiseType::Cascade), 0.8);
+  EXPECT_EQ(defaultOffset(NoiseType::Craters), 0.25);
   gpu::NoiseParams p = toNoiseParams(s);
   EXPECT_FLOAT_EQ(p.octaveWeight, 0.5f);  // 2^-1
   EXPECT_FLOAT_EQ(p.gain, 2.0f);
@@ -57,6 +58,22 @@ TEST(NoiseSettings, OutOfRangeValuesAreRejectedByName) {
   EXPECT_NE(errorOf([&] { validateNoiseSettings(s); }).find("offset"), std::string::npos);
 }
 
+TEST(NoiseSettings, CraterRimPerturbationOutsideZeroToHalfIsRejected) {
+  // The crater shader's bound on the cells a crater reaches holds for perturbations up to 0.5.
+  NoiseSettings s;
+  s.type = NoiseType::Craters;
+  for (double good : {0.0, 0.25, 0.5}) {
+    s.offset = good;
+    EXPECT_EQ(errorOf([&] { validateNoiseSettings(s); }), "") << good;
+  }
+  for (double bad : {-0.01, 0.51, 2.0}) {
+    s.offset = bad;
+    EXPECT_NE(errorOf([&] { validateNoiseSettings(s); }).find("offset of craters"), std::string::npos) << bad;
+  }
+  s.type = NoiseType::Ridged;  // other types keep |offset| <= 10
+  EXPECT_EQ(errorOf([&] { validateNoiseSettings(s); }), "");
+}
+
 TEST(NoiseSettings, NamesParseAndUnknownNamesAreRejected) {
   EXPECT_EQ(parseNoiseType("ridged"), NoiseType::Ridged);
   EXPECT_EQ(parseNoiseType("cascade"), NoiseType::Cascade);
@@ -64,7 +81,7 @@ TEST(NoiseSettings, NamesParseAndUnknownNamesAreRejected) {
   EXPECT_NE(errorOf([] { parseNoiseType("perlin"); }).find("unknown noise type 'perlin'"), std::string::npos);
   EXPECT_NE(errorOf([] { parseNoiseHash("slow"); }).find("unknown noise hash 'slow'"), std::string::npos);
   for (NoiseType t : {NoiseType::Simplex, NoiseType::Fbm, NoiseType::Ridged, NoiseType::Hybrid, NoiseType::Hetero,
-                      NoiseType::Cascade})
+                      NoiseType::Cascade, NoiseType::Craters})
     EXPECT_EQ(parseNoiseType(noiseTypeName(t)), t);
 }
 

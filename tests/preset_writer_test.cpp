@@ -221,11 +221,13 @@ class RandomPlanet {
   NoiseLayer layer(int index) {
     NoiseLayer l;
     l.name = name(index);
-    l.noise.type = noise::NoiseType(integer(0, 5));
+    l.noise.type = noise::NoiseType(integer(0, int64_t(gpu::kNoiseTypeCount) - 1));
     l.noise.octaves = int(integer(noise::kMinOctaves, noise::kMaxOctaves));
     l.noise.lacunarity = value({std::nextafter(1.0, 2.0), 8.0});
     l.noise.H = value({noise::kMinH, noise::kMaxH});
-    if (coin()) l.noise.offset = value({-noise::kMaxOffset, noise::kMaxOffset});
+    if (coin())  // craters' offset is a rim perturbation with a narrower range
+      l.noise.offset = l.noise.type == noise::NoiseType::Craters ? value({0.0, noise::kMaxCraterPerturbation})
+                                                                 : value({-noise::kMaxOffset, noise::kMaxOffset});
     if (coin()) l.noise.gain = value({0.0, noise::kMaxGain});
     l.noise.seed = uint32_t(integer(0, 4294967295));
     l.noise.hash = noise::NoiseHash(integer(0, 1));

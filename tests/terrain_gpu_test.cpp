@@ -59,7 +59,7 @@ TEST_F(TerrainGpu, SpecializedVertexHeightsMatchTheCpuForEveryTypeAndHash) {
   const NoiseLayer base = planet.layers[0];
   const noise::NoiseType types[] = {noise::NoiseType::Cascade, noise::NoiseType::Simplex, noise::NoiseType::Hetero,
                                     noise::NoiseType::Ridged,  noise::NoiseType::Fbm,     noise::NoiseType::Hybrid,
-                                    noise::NoiseType::Ridged,  noise::NoiseType::Simplex};
+                                    noise::NoiseType::Craters, noise::NoiseType::Simplex};
   planet.layers.clear();
   for (uint32_t l = 0; l < 8; ++l) {
     NoiseLayer layer = base;

@@ -62,14 +62,15 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   auto cmd = std::make_shared<NoiseCommand>();
   CLI::App* sub = app.add_subcommand(
       "noise", "Evaluate a noise function at points 'x y z' read from stdin, one value per line (%.9g)");
-  sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade")->required();
+  sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade | craters")->required();
   sub->add_option("--octaves", cmd->settings.octaves, "Octaves, 1..32")->capture_default_str();
   sub->add_option("--lacunarity", cmd->settings.lacunarity, "Frequency ratio between octaves, in (1, 8]")
       ->capture_default_str();
   sub->add_option("--H", cmd->settings.H, "Octave i is weighted by lacunarity^(-i*H), in [0, 4]")
       ->capture_default_str();
   sub->add_option("--offset", cmd->offset,
-                  "Offset of ridged (default 1), hybrid (0.7), hetero (0.7) and cascade (0.8)");
+                  "Offset of ridged (default 1), hybrid (0.7), hetero (0.7) and cascade (0.8); rim perturbation of "
+                  "craters, in [0, 0.5] (0.25)");
   sub->add_option("--gain", cmd->gain, "Ridged feedback gain (default 2)");
   sub->add_option("--seed", cmd->settings.seed, "Seed, 0..4294967295")->capture_default_str();
   sub->add_option("--hash", cmd->hash, "Lattice hash: fast (ALU only) | reference (Perlin's table)")

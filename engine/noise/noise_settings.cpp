@@ -17,6 +17,7 @@ struct TypeName {
 constexpr TypeName kTypeNames[] = {
     {NoiseType::Simplex, "simplex"}, {NoiseType::Fbm, "fbm"},       {NoiseType::Ridged, "ridged"},
     {NoiseType::Hybrid, "hybrid"},   {NoiseType::Hetero, "hetero"}, {NoiseType::Cascade, "cascade"},
+    {NoiseType::Craters, "craters"},
 };
 
 void requireFinite(double value, const char* name) {
@@ -31,6 +32,7 @@ double defaultOffset(NoiseType type) {
     case NoiseType::Hybrid:
     case NoiseType::Hetero: return 0.7;
     case NoiseType::Cascade: return 0.8;
+    case NoiseType::Craters: return 0.25;
     default: return 0.0;
   }
 }
@@ -46,7 +48,8 @@ const char* noiseHashName(NoiseHash hash) { return hash == NoiseHash::Reference 
 NoiseType parseNoiseType(std::string_view name) {
   for (const TypeName& t : kTypeNames)
     if (name == t.name) return t.type;
-  throw Error(fmt::format("unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero or cascade)", name));
+  throw Error(
+      fmt::format("unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero, cascade or craters)", name));
 }
 
 NoiseHash parseNoiseHash(std::string_view name) {
@@ -67,6 +70,10 @@ void validateNoiseSettings(const NoiseSettings& s) {
     requireFinite(*s.offset, "offset");
     if (std::abs(*s.offset) > kMaxOffset)
       throw Error(fmt::format("offset must be in [-{}, {}], got {}", kMaxOffset, kMaxOffset, *s.offset));
+    // The crater shader's bound on the cells a crater can reach assumes at most this much.
+    if (s.type == NoiseType::Craters && !(*s.offset >= 0.0 && *s.offset <= kMaxCraterPerturbation))
+      throw Error(fmt::format("offset of craters (the rim perturbation) must be in [0, {}], got {}",
+                              kMaxCraterPerturbation, *s.offset));
   }
   if (s.gain) {
     requireFinite(*s.gain, "gain");

@@ -18,6 +18,7 @@ enum class NoiseType : uint32_t {
   Hybrid = gpu::kNoiseHybrid,
   Hetero = gpu::kNoiseHetero,
   Cascade = gpu::kNoiseCascade,
+  Craters = gpu::kNoiseCraters,
 };
 
 enum class NoiseHash : uint32_t {
@@ -33,6 +34,8 @@ inline constexpr double kMinH = 0.0;
 inline constexpr double kMaxH = 4.0;
 inline constexpr double kMaxOffset = 10.0;
 inline constexpr double kMaxGain = 16.0;
+// Craters: offset is the rim perturbation, a fraction of the radius (noise.glsl, cratersNoise).
+inline constexpr double kMaxCraterPerturbation = 0.5;
 
 struct NoiseSettings {
   NoiseType type = NoiseType::Fbm;
@@ -45,7 +48,8 @@ struct NoiseSettings {
   NoiseHash hash = NoiseHash::Fast;
 };
 
-// Offset used when none is given: ridged 1, hybrid 0.7, hetero 0.7, cascade 0.8, others 0.
+// Offset used when none is given: ridged 1, hybrid 0.7, hetero 0.7, cascade 0.8, craters 0.25
+// (rim perturbation), others 0.
 double defaultOffset(NoiseType type);
 inline constexpr double kDefaultGain = 2.0;
 
@@ -56,7 +60,8 @@ NoiseType parseNoiseType(std::string_view name);
 NoiseHash parseNoiseHash(std::string_view name);
 
 // Throws planet::Error naming the first out-of-range value: octaves outside 1..32,
-// lacunarity outside (1, 8], H outside [0, 4], |offset| > 10, gain outside [0, 16], NaN/Inf.
+// lacunarity outside (1, 8], H outside [0, 4], |offset| > 10 (craters: outside [0, 0.5]),
+// gain outside [0, 16], NaN/Inf.
 void validateNoiseSettings(const NoiseSettings& settings);
 
 // Validates, then fills the parameter block shared with the shaders (count = 0).

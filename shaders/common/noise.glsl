@@ -212,20 +212,29 @@ OctaveWalk plainWalk(IN(NoiseParams) params, vec3 p) {
   return walk;
 }
 
-// N at the walk's next octave, then advances the walk.
-real nextOctave(INOUT(OctaveWalk) walk, IN(NoiseParams) params) {
-  PRECISE real n;
+// The walk's next octave as a point q and the simplex lattice shift that goes with it (the
+// octave's sample is q + shift in lattice units), then advances the walk.
+void nextOctavePoint(INOUT(OctaveWalk) walk, OUT(vec3) q, OUT(uvec3) shift) {
   if (walk.rebased != 0u) {
     vec4 rs = OCTAVE_REMAINDER(walk.layer, walk.octave);
-    uvec4 shift = OCTAVE_SHIFT(walk.layer, walk.octave);
-    PRECISE vec3 q = vec3(rs.x + walk.offset.x * rs.w, rs.y + walk.offset.y * rs.w, rs.z + walk.offset.z * rs.w);
-    n = simplexWrapped(q, uvec3(shift.x, shift.y, shift.z), params.hash, params.seedMix);
+    uvec4 s = OCTAVE_SHIFT(walk.layer, walk.octave);
+    PRECISE vec3 r = vec3(rs.x + walk.offset.x * rs.w, rs.y + walk.offset.y * rs.w, rs.z + walk.offset.z * rs.w);
+    q = r;
+    shift = uvec3(s.x, s.y, s.z);
   } else {
-    n = simplexWrapped(walk.q, uvec3(0u), params.hash, params.seedMix);
+    q = walk.q;
+    shift = uvec3(0u);
     walk.q = walk.q * walk.lacunarity;
   }
   walk.octave += 1u;
-  return n;
+}
+
+// N at the walk's next octave, then advances the walk.
+real nextOctave(INOUT(OctaveWalk) walk, IN(NoiseParams) params) {
+  vec3 q;
+  uvec3 shift;
+  nextOctavePoint(walk, q, shift);
+  return simplexWrapped(q, shift, params.hash, params.seedMix);
 }
 
 // The fractals below follow the formulas of issue 2 (Musgrave's definitions as given in
@@ -321,6 +330,156 @@ real cascadeNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   return fadeLast(params, before, value);
 }
 
+// Craters (seed 000 §3.1.9, after Linda 2007 §4.6.2: bowl, raised rim, ejecta, perturbed zones;
+// here as a lattice fractal so that it needs no crater list and works at any scale).
+//
+// Octave i is one size class. Its sample q (the same walk as the other types, so rebasing and
+// octave limiting work unchanged) lies in a unit cubic lattice; each cell holds a crater with
+// probability kCraterPresence, its centre jittered inside the cell and its radius r a hashed
+// fraction of kCraterRadiusMax cells. A crater reaches E = kCraterReach radii (rim at 1, ejecta
+// to E), E·r·(1 + eps) with the rim perturbation below. Bound: the centre keeps a margin
+// m = max(0, E·r·(1 + eps) - 1/2) from its cell's faces, and q lies within 1/2 of its nearest
+// lattice corner c; a cell outside the 2x2x2 around c is, along some axis, at least 1/2 away
+// from q, so its centre is at least 1/2 + m >= the crater's reach away. So those eight cells hold
+// every crater that touches q (m stays below 1/2: E·rMax·1.5 = 0.675 < 1).
+//
+// Profile, for x = (distance / r')^2 (no square root), rim height R = kCraterRim relative to a
+// floor depth of 1:
+//   bowl   x <= 1:  R - (1 + R)·(1 - x)^2           (parabolic floor, -1 at the centre)
+//   ejecta x >= 1:  R·(1 - u)^3·(1 + 3u), u = (x - 1) / (E^2 - 1), 0 from u = 1 on
+// Both are R with zero slope at the rim and the ejecta ends with zero slope, so the height and
+// its slope are continuous (no rings in the normals). A crater adds r / rMax times this
+// (depth in proportion to size within the octave; the largest craters of octave 0 have floor
+// depth 1), octave i weighted by w_i = L^(-iH): the depth of a crater of diameter D grows as
+// D^H (H = 1: geometrically similar craters; H < 1: small craters relatively deeper, as the
+// simple craters of the Moon are compared with its shallow large basins).
+//
+// Size distribution: octave i has L^(3i) cells per unit volume; the craters a surface cuts are
+// those within their reach of it, a slab of thickness ~L^(-i), so L^(2i) per unit area, with
+// diameters D_i ~ L^(-i). The cumulative count N(>D) per area = sum over i with D_i > D of
+// L^(2i) ~ D^(-2): many small, few large, the equilibrium slope of lunar crater counts. (The
+// surface cuts each crater's ball at a random height, so apparent sizes and depths also vary
+// within an octave, like fresh and degraded craters.)
+//
+// Perturbation (params.offset = eps, in [0, 0.5]): r' = r·(1 + eps·n) and the rim height
+// R·(1 + eps·n), with n a simplex value at twice the octave's frequency, so rims are neither
+// circles nor level. Both hashes work: the cell values come from the integer hash (fast) or from
+// the seed-shuffled permutation table (reference; craters then repeat every 256 cells).
+NOISE_CONST real kCraterPresence = real(0.6f);   // fraction of cells that hold a crater
+NOISE_CONST real kCraterRadiusMax = real(0.25f);  // largest radius, in cells
+NOISE_CONST real kCraterRadiusMin = real(0.5f);   // smallest radius as a fraction of the largest
+NOISE_CONST real kCraterRim = real(0.3f);         // rim height over the surroundings / floor depth
+NOISE_CONST real kCraterReach = real(1.8f);       // ejecta reach in radii (E)
+// 1 / (E^2 - 1), written out: a folded constant expression might round differently in glslang.
+NOISE_CONST real kCraterInvEjectaSpan = real(0.44642857f);
+NOISE_CONST real kCraterMaxPerturbation = real(0.5f);
+NOISE_CONST real kInv65536 = real(1.0f) / real(65536.0f);
+
+// Full-avalanche 32-bit mix (Wellons' lowbias32, as in noiseSeedMix).
+uint craterMix(uint h) {
+  h ^= h >> 16u;
+  h *= 0x7feb352du;
+  h ^= h >> 15u;
+  h *= 0x846ca68bu;
+  h ^= h >> 16u;
+  return h;
+}
+
+// 32 random bits of cell (i, j, k), from the layer's hash.
+uint craterCellHash(uint i, uint j, uint k, uint hashKind, uint seedMix) {
+  if (hashKind == kNoiseHashReference) {
+    // Three permutation chains, the axes rotated, give 24 bits; the mix spreads them.
+    uint b0 = PERM((i & 255u) + PERM((j & 255u) + PERM(k & 255u)));
+    uint b1 = PERM((j & 255u) + PERM((k & 255u) + PERM(i & 255u)));
+    uint b2 = PERM((k & 255u) + PERM((i & 255u) + PERM(j & 255u)));
+    return craterMix(b0 | (b1 << 8u) | (b2 << 16u));
+  }
+  return craterMix(seedMix + hashAxis(i, kHashAxisX) + hashAxis(j, kHashAxisY) + hashAxis(k, kHashAxisZ));
+}
+
+// The cubic lattice's integer shift from a walk's simplex shift. The CPU's shift is
+// I + m·(1,1,1) for the anchor's integer part I, whose coordinates sum to 3m (OctaveWalk); the
+// shift's coordinates then sum to 6m, so m = sum/6 modulo 2^31 (halve, then multiply by the
+// inverse of 3 modulo 2^32). I modulo 2^31 is all either hash uses (2^22 and 2^8).
+uvec3 craterCellShift(uvec3 shift) {
+  uint m = ((shift.x + shift.y + shift.z) >> 1u) * 0xaaaaaaabu;
+  return uvec3(shift.x - m, shift.y - m, shift.z - m);
+}
+
+// Profile of one crater at x = (distance / r')^2, rim height rim (see above).
+real craterProfile(real x, real rim) {
+  if (x <= real(1.0f)) {
+    PRECISE real t = real(1.0f) - x;
+    PRECISE real bowl = rim - (real(1.0f) + rim) * t * t;
+    return bowl;
+  }
+  PRECISE real u = min((x - real(1.0f)) * kCraterInvEjectaSpan, real(1.0f));
+  PRECISE real s = real(1.0f) - u;
+  PRECISE real ejecta = rim * s * s * s * (real(1.0f) + real(3.0f) * u);
+  return ejecta;
+}
+
+// One octave of craters at point q (cell lattice shifted by `cells`), perturbation n.
+real craterOctave(vec3 q, uvec3 cells, real eps, real n, uint hashKind, uint seedMix) {
+  // Nearest lattice corner c and q relative to it, in [-1/2, 1/2].
+  int cx = int(clamp(floor(q.x + real(0.5f)), -kCellLimit, kCellLimit));
+  int cy = int(clamp(floor(q.y + real(0.5f)), -kCellLimit, kCellLimit));
+  int cz = int(clamp(floor(q.z + real(0.5f)), -kCellLimit, kCellLimit));
+  PRECISE real fx = q.x - real(cx);
+  PRECISE real fy = q.y - real(cy);
+  PRECISE real fz = q.z - real(cz);
+  PRECISE real grow = real(1.0f) + eps;
+  PRECISE real radiusScale = real(1.0f) + eps * n;
+  PRECISE real rim = kCraterRim * radiusScale;
+  PRECISE real sum = real(0.0f);
+  for (uint cell = 0u; cell < 8u; ++cell) {
+    // Cell (c + a) for a in {-1, 0}^3, its corner at a relative to c.
+    int ax = int(cell & 1u) - 1;
+    int ay = int((cell >> 1u) & 1u) - 1;
+    int az = int((cell >> 2u) & 1u) - 1;
+    uint h = craterCellHash(uint(cx + ax) + cells.x, uint(cy + ay) + cells.y, uint(cz + az) + cells.z, hashKind,
+                            seedMix);
+    uint h2 = craterMix(h);
+    if (real(h2 & 0xffffu) * kInv65536 >= kCraterPresence) continue;
+    // size = r / rMax in [kCraterRadiusMin, 1): the crater's depth scale.
+    PRECISE real size = kCraterRadiusMin + (real(1.0f) - kCraterRadiusMin) * real(h2 >> 16u) * kInv65536;
+    PRECISE real r = kCraterRadiusMax * size;
+    PRECISE real reach = kCraterReach * r * grow;
+    PRECISE real margin = max(reach - real(0.5f), real(0.0f));
+    PRECISE real span = real(1.0f) - real(2.0f) * margin;
+    PRECISE real dx = fx - (real(ax) + margin + span * real(h >> 16u) * kInv65536);
+    PRECISE real dy = fy - (real(ay) + margin + span * real(h & 0xffffu) * kInv65536);
+    PRECISE real dz = fz - (real(az) + margin + span * real(craterMix(h2) >> 16u) * kInv65536);
+    PRECISE real distance2 = dx * dx + dy * dy + dz * dz;
+    if (distance2 >= reach * reach) continue;
+    PRECISE real rp = r * radiusScale;
+    PRECISE real x = distance2 / (rp * rp);
+    sum += size * craterProfile(x, rim);
+  }
+  return sum;
+}
+
+// Crater fractal: sum over octaves of w_i · craterOctave at octave i's point (see above).
+real cratersNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
+  PRECISE real eps = clamp(real(params.offset), real(0.0f), kCraterMaxPerturbation);
+  PRECISE real sum = real(0.0f);
+  PRECISE real before = real(0.0f);
+  PRECISE real w = real(1.0f);
+  for (uint i = 0u; i < params.octaves; ++i) {
+    vec3 q;
+    uvec3 shift;
+    nextOctavePoint(walk, q, shift);
+    // Twice the frequency: the point 2q with twice the shift (its coordinates still sum to a
+    // multiple of 3, so the simplex skew stays integral).
+    PRECISE vec3 q2 = q * real(2.0f);
+    real n = simplexWrapped(q2, shift * 2u, params.hash, params.seedMix);
+    before = sum;
+    sum += craterOctave(q, craterCellShift(shift), eps, n, params.hash, params.seedMix) * w;
+    w *= real(params.octaveWeight);
+  }
+  return fadeLast(params, before, sum);
+}
+
 // The fractal of type params.type along `walk` (a simplex type samples one octave).
 real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseFbm) return fbmNoise(params, walk);
@@ -328,6 +487,7 @@ real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseHybrid) return hybridNoise(params, walk);
   if (params.type == kNoiseHetero) return heteroNoise(params, walk);
   if (params.type == kNoiseCascade) return cascadeNoise(params, walk);
+  if (params.type == kNoiseCraters) return cratersNoise(params, walk);
   return nextOctave(walk, params);
 }
 

@@ -14,7 +14,8 @@ GPU_CONST uint kNoiseRidged = 2u;
 GPU_CONST uint kNoiseHybrid = 3u;
 GPU_CONST uint kNoiseHetero = 4u;
 GPU_CONST uint kNoiseCascade = 5u;
-GPU_CONST uint kNoiseTypeCount = 6u;
+GPU_CONST uint kNoiseCraters = 6u;  // impact craters of many sizes (airless bodies)
+GPU_CONST uint kNoiseTypeCount = 7u;
 
 // Lattice hashes (NoiseParams.hash).
 GPU_CONST uint kNoiseHashFast = 0u;       // ALU-only integer hash of (i, j, k, seed)
@@ -36,7 +37,7 @@ struct NoiseParams {
   uint seedMix;        // the seed after noiseSeedMix(), so the fast hash needs no per-point setup
   float lacunarity;    // L: octave i samples p * L^i
   float octaveWeight;  // L^-H: octave i is weighted by octaveWeight^i (pow computed once, on the CPU)
-  float offset;        // ridged / hybrid / hetero / cascade offset
+  float offset;        // ridged / hybrid / hetero / cascade offset; craters: rim perturbation
   float gain;          // ridged feedback gain
   uint count;          // points to evaluate (GPU only)
   uint firstIndex;     // index of the first point of this dispatch (GPU only)

@@ -34,9 +34,9 @@ bool editColor(const char* label, glm::vec3& color) {
 bool editLayer(NoiseLayer& layer) {
   bool done = false;
   noise::NoiseSettings& n = layer.noise;
-  static constexpr noise::NoiseType kTypes[] = {noise::NoiseType::Simplex, noise::NoiseType::Fbm,
-                                                noise::NoiseType::Ridged,  noise::NoiseType::Hybrid,
-                                                noise::NoiseType::Hetero,  noise::NoiseType::Cascade};
+  static constexpr noise::NoiseType kTypes[] = {
+      noise::NoiseType::Simplex, noise::NoiseType::Fbm,     noise::NoiseType::Ridged, noise::NoiseType::Hybrid,
+      noise::NoiseType::Hetero,  noise::NoiseType::Cascade, noise::NoiseType::Craters};
   if (ImGui::BeginCombo("type", noise::noiseTypeName(n.type))) {
     for (noise::NoiseType t : kTypes)
       if (ImGui::Selectable(noise::noiseTypeName(t), t == n.type) && t != n.type) {
@@ -50,7 +50,11 @@ bool editLayer(NoiseLayer& layer) {
   done |= editDouble("lacunarity", n.lacunarity, 1.01, 8.0);
   done |= editDouble("H", n.H, noise::kMinH, noise::kMaxH);
   double offset = n.offset.value_or(noise::defaultOffset(n.type));
-  if (editDouble("offset", offset, -2.0, 2.0)) done = true;
+  // Craters' offset is the rim perturbation, valid in [0, 0.5] only.
+  const bool craters = n.type == noise::NoiseType::Craters;
+  if (editDouble(craters ? "rim perturbation" : "offset", offset, craters ? 0.0 : -2.0,
+                 craters ? noise::kMaxCraterPerturbation : 2.0))
+    done = true;
   if (offset != n.offset.value_or(noise::defaultOffset(n.type))) n.offset = offset;
   double gain = n.gain.value_or(noise::kDefaultGain);
   if (editDouble("gain", gain, 0.0, noise::kMaxGain)) done = true;
