@@ -265,7 +265,7 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError("layer = [1, 2]\n" + withoutLayers()),
             "x.toml:1: 'layer' must be an array of tables ([[layer]]), got an array of values");
   EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
-            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero or cascade)");
+            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade or craters)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
             "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
 }

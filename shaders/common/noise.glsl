@@ -365,13 +365,13 @@ real cascadeNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 // R·(1 + eps·n), with n a simplex value at twice the octave's frequency, so rims are neither
 // circles nor level. Both hashes work: the cell values come from the integer hash (fast) or from
 // the seed-shuffled permutation table (reference; craters then repeat every 256 cells).
-NOISE_CONST real kCraterPresence = real(0.6f);   // fraction of cells that hold a crater
-NOISE_CONST real kCraterRadiusMax = real(0.25f);  // largest radius, in cells
+NOISE_CONST real kCraterPresence = real(0.8f);   // fraction of cells that hold a crater
+NOISE_CONST real kCraterRadiusMax = real(0.3f);   // largest radius, in cells
 NOISE_CONST real kCraterRadiusMin = real(0.5f);   // smallest radius as a fraction of the largest
 NOISE_CONST real kCraterRim = real(0.3f);         // rim height over the surroundings / floor depth
-NOISE_CONST real kCraterReach = real(1.8f);       // ejecta reach in radii (E)
+NOISE_CONST real kCraterReach = real(1.5f);       // ejecta reach in radii (E)
 // 1 / (E^2 - 1), written out: a folded constant expression might round differently in glslang.
-NOISE_CONST real kCraterInvEjectaSpan = real(0.44642857f);
+NOISE_CONST real kCraterInvEjectaSpan = real(0.8f);
 NOISE_CONST real kCraterMaxPerturbation = real(0.5f);
 NOISE_CONST real kInv65536 = real(1.0f) / real(65536.0f);
 
