@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "noise/noise_kernel.h"
+
 namespace planet {
 
 OctaveBudget octaveBudget(const NoiseLayer& layer, double spacingM, double wavelengthsPerSpacing) {
@@ -10,8 +12,12 @@ OctaveBudget octaveBudget(const NoiseLayer& layer, double spacingM, double wavel
   if (!(spacingM > 0.0) || !std::isfinite(spacingM)) return {maxOctaves, 1.0f};
   // The shaders scale octaves by L rounded to float; use the same L here.
   const double lacunarity = double(float(layer.noise.lacunarity));
+  // A crater octave's features are its craters, at most 2 kCraterRadiusMax cells across: its
+  // wavelength for this purpose is that diameter, not the cell (else sliding vertices swim).
+  const double feature =
+      layer.noise.type == noise::NoiseType::Craters ? 2.0 * double(noise::NoiseKernel<float>::kCraterRadiusMax) : 1.0;
   const double count =
-      1.0 + std::log(1.0 / (layer.frequency * wavelengthsPerSpacing * spacingM)) / std::log(lacunarity);
+      1.0 + std::log(feature / (layer.frequency * wavelengthsPerSpacing * spacingM)) / std::log(lacunarity);
   if (!(count < double(maxOctaves))) return {maxOctaves, 1.0f};
   if (!(count > 1.0)) return {1, 1.0f};
   const double whole = std::floor(count);
