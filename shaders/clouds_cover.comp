@@ -42,8 +42,9 @@ void main() {
   for (uint c = 0u; c < 3u; ++c) {
     NoiseParams params = noise;
     params.seedMix = noiseSeedMix(floatBitsToUint(shape.z) + c * 7919u);
+    params.hash = kNoiseHashFast;  // PERM is 0 here: the compiler drops the reference hash
     // fBm is about ±0.6 of its weight sum: map it to [0, 1] around 0.5.
-    value[c] = clamp(0.5f + 0.8f * evaluateNoise(params, p) * shape.w, 0.0f, 1.0f);
+    value[c] = clamp(0.5f + 0.8f * evaluateFbm(params, p) * shape.w, 0.0f, 1.0f);
   }
   imageStore(cover, ivec3(id), vec4(value, 1.0f));
 }

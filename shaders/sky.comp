@@ -63,7 +63,7 @@ float cloudDensity(vec3 rayLocal, float t) {
   float footprint = t * sky.extent.z * sky.cloudShape.y;
   float detailWeight = 1.0f - smoothstep(0.25f, 0.5f, footprint);
   if (detailWeight > 0.0f)
-    v += detailWeight * sky.cloudShape.z * evaluateNoise(detail, drifted * (R * sky.cloudShape.y));
+    v += detailWeight * sky.cloudShape.z * evaluateFbm(detail, drifted * (R * sky.cloudShape.y));
   float excess = max(0.0f, v - (1.0f - sky.clouds.z));
   return 1.0f - exp(log(sky.clouds.w) * excess);
 }

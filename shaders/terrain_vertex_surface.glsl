@@ -122,7 +122,7 @@ vec4 surfaceAttributes(vec3 offsetPlanet) {
   band.firstIndex = 0u;
   band.lastOctaveWeight = 1.0f;
   band.pad2 = 0u;
-  float bandNoise = evaluateNoise(band, directionPlanet * (radius * push.bandFrequency));
+  float bandNoise = evaluateFbm(band, directionPlanet * (radius * push.bandFrequency));
   vec2 face = faceOffset(offsetPlanet / radius - frame.refMinusNadir.xyz);
   return vec4(face, bandNoise, normalize(directionPlanet).z);
 }

@@ -39,7 +39,7 @@ glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPla
   band.octaveWeight = 0.5f;
   band.lastOctaveWeight = 1.0f;
   noise::NoiseKernel<float> kernel;
-  const float bandNoise = kernel.evaluateNoise(band, directionPlanet * (radius * job.bandFrequency));
+  const float bandNoise = kernel.evaluateFbm(band, directionPlanet * (radius * job.bandFrequency));
   const glm::vec2 face = faceOffset(frame, offsetPlanet / radius - glm::vec3(frame.refMinusNadir));
   return glm::vec4(face, bandNoise, glm::normalize(directionPlanet).z);
 }

@@ -497,4 +497,11 @@ real evaluateNoise(IN(NoiseParams) params, vec3 p) {
   return fractalNoise(params, walk);
 }
 
+// fBm at p whatever params.type says (equal to evaluateNoise of an fBm): for shaders that use no
+// other type (clouds, colour noise), so that the other fractals never enter their code.
+real evaluateFbm(IN(NoiseParams) params, vec3 p) {
+  OctaveWalk walk = plainWalk(params, p);
+  return fbmNoise(params, walk);
+}
+
 #endif
