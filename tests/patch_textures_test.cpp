@@ -173,6 +173,35 @@ TEST_F(PatchTexturesGpu, HeightsAndNormalsMatchTheDoubleReferenceOnEveryLevel) {
   std::printf("[ measured ] max |height - reference| %.3g m\n", maxHeightError);
 }
 
+// The moon's crater layer: the patch heights come from the shader variant with the crater
+// fractal (planet_gpu_data.h, hasCraterLayer); the crater-free variant would draw the layer as
+// simplex and miss the reference by hundreds of metres. Every level against the double reference.
+TEST_F(PatchTexturesGpu, MoonCraterHeightsMatchTheDoubleReferenceOnEveryLevel) {
+  const PlanetDescription planet = resolvePreset("moon");
+  ASSERT_TRUE(hasCraterLayer(planet));
+  PlanetGpuData data(context(), planet);
+  const PatchSettings settings;
+  PatchTextures patches(context(), data, settings);
+  const glm::dvec3 camera = cameraDirection(settings, planet.radiusM);
+  const PatchLayout layout = choosePatchLayout(settings, planet.radiusM, camera, nadirPixelM(planet.radiusM));
+  ASSERT_EQ(runUpdate(context(), patches, layout), settings.levelCount);
+  const std::vector<float> texels = readBack(context(), patches);
+  std::mt19937 random(6);
+  double maxHeightError = 0.0;
+  for (const PatchLevel& level : layout.levels) {
+    for (int i = 0; i < 200; ++i) {
+      const int64_t x = random() % settings.resolution, y = random() % settings.resolution;
+      const glm::dvec2 ab = patchTexelCoordinates(level, double(x), double(y));
+      const double reference = terrainHeightM(planet, cubeFaceDirection(layout.face, ab.x, ab.y),
+                                              patchTexelSpacingM(layout, level, planet.radiusM));
+      const double error = std::abs(double(texelOf(texels, settings.resolution, level.layer, x, y).w) - reference);
+      EXPECT_LE(error, kHeightToleranceM) << "exponent " << level.exponent << " texel " << x << "," << y;
+      maxHeightError = std::max(maxHeightError, error);
+    }
+  }
+  std::printf("[ measured ] moon: max |height - reference| %.3g m\n", maxHeightError);
+}
+
 TEST_F(PatchTexturesGpu, UpdatesRebuildOnlyWhatMoved) {
   const PlanetDescription planet = resolvePreset("earth");
   PlanetGpuData data(context(), planet);

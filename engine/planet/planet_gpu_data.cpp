@@ -24,6 +24,11 @@ std::vector<uint32_t> layerSpecialization(const PlanetDescription& planet) {
   return values;
 }
 
+bool hasCraterLayer(const PlanetDescription& planet) {
+  return std::any_of(planet.layers.begin(), planet.layers.end(),
+                     [](const NoiseLayer& layer) { return layer.noise.type == noise::NoiseType::Craters; });
+}
+
 PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet)
     : context_(context), planet_(planet) {
   if (planet.layers.size() > gpu::kTerrainMaxLayers)

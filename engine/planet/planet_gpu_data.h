@@ -20,6 +20,11 @@ namespace planet {
 // (0 for unused layers), kTerrainSpecCount values.
 std::vector<uint32_t> layerSpecialization(const PlanetDescription& planet);
 
+// Whether a layer of `planet` is of type craters. The shaders specialized on the layers come in
+// two variants (shaders/CMakeLists.txt): with the crater fractal, and without it (the default for
+// planets that have no crater layer, whose pipelines then compile faster in less memory).
+bool hasCraterLayer(const PlanetDescription& planet);
+
 class PlanetGpuData {
  public:
   // Throws planet::Error if the planet has more layers than the shaders hold.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -14,6 +15,7 @@
 #include "planet/terrain_rebase.h"
 #include "shared/patch_params.h"
 #include "spv/patch_height.comp.h"
+#include "spv/patch_height_no_craters.comp.h"
 #include "spv/patch_normal.comp.h"
 #include "vk/commands.h"
 #include "vk/context.h"
@@ -142,7 +144,12 @@ void PatchTextures::createPipelines() {
   vk::destroyComputePipeline(context_, heightPipeline_);
   specialization_ = layerSpecialization(data_.planet());
   const uint32_t sets = settings_.levelCount * vk::kFramesInFlight;
-  heightPipeline_ = vk::createComputePipeline(context_, kSpv_patch_height_comp, kBindings, 0, specialization_, sets);
+  // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer); the
+  // specialization holds the types, so a change of variant also shows as a change of it.
+  const std::span<const uint32_t> height = hasCraterLayer(data_.planet())
+                                               ? std::span<const uint32_t>(kSpv_patch_height_comp)
+                                               : kSpv_patch_height_no_craters_comp;
+  heightPipeline_ = vk::createComputePipeline(context_, height, kBindings, 0, specialization_, sets);
   normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
   const VkDescriptorType buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   for (LayerResources& layer : layers_) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 
 #include "core/error.h"
 #include "planet/octave_budget.h"
+#include "planet/planet_gpu_data.h"
 #include "planet/terrain_height.h"
 #include "render/patch_textures.h"
 #include "render/sky_tables.h"
@@ -19,6 +21,7 @@
 #include "spv/terrain.vert.h"
 #include "spv/terrain_noise.vert.h"
 #include "spv/terrain_heights.comp.h"
+#include "spv/terrain_heights_no_craters.comp.h"
 #include "spv/terrain_normals.comp.h"
 #include "spv/water.frag.h"
 #include "spv/water.vert.h"
@@ -160,8 +163,11 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     layout_ =
         vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
     // Specialized on the planet's layers: lavapipe would otherwise run every fractal type and hash.
-    heightsPipeline_ =
-        vk::createComputePipelineWithLayout(context, kSpv_terrain_heights_comp, layout_, layerSpecialization(planet));
+    // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer).
+    const std::span<const uint32_t> heights = hasCraterLayer(planet)
+                                                  ? std::span<const uint32_t>(kSpv_terrain_heights_comp)
+                                                  : kSpv_terrain_heights_no_craters_comp;
+    heightsPipeline_ = vk::createComputePipelineWithLayout(context, heights, layout_, layerSpecialization(planet));
     normalsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_);
     if (settings.heightSource == HeightSource::VertexShader)
       noiseDrawLayout_ =

@@ -480,14 +480,19 @@ real cratersNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   return fadeLast(params, before, sum);
 }
 
-// The fractal of type params.type along `walk` (a simplex type samples one octave).
+// The fractal of type params.type along `walk` (a simplex type samples one octave). A shader
+// compiled with NOISE_NO_CRATERS leaves the crater fractal out (a craters layer then reads as
+// simplex): lavapipe inlines every branch here before specialization constants fold them away, so
+// a shader specialized on crater-free layers would still pay for compiling the crater code.
 real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseFbm) return fbmNoise(params, walk);
   if (params.type == kNoiseRidged) return ridgedNoise(params, walk);
   if (params.type == kNoiseHybrid) return hybridNoise(params, walk);
   if (params.type == kNoiseHetero) return heteroNoise(params, walk);
   if (params.type == kNoiseCascade) return cascadeNoise(params, walk);
+#ifndef NOISE_NO_CRATERS
   if (params.type == kNoiseCraters) return cratersNoise(params, walk);
+#endif
   return nextOctave(walk, params);
 }
 
