@@ -34,9 +34,10 @@ struct Crater {
   double size;        // radius / the largest radius: the depth scale
 };
 
-// The crater of cell (i, j, k) without rim perturbation, if the cell holds one: the placement
-// rule of noise.glsl, read off the kernel's own hash.
+// The crater of cell (i, j, k), if the cell holds one: the placement rule of noise.glsl, read
+// off the kernel's own hash (the rim perturbation widens the margin from the cell's faces).
 bool craterOfCell(const NoiseSettings& s, int i, int j, int k, Crater& crater) {
+  const double eps = s.offset.value_or(defaultOffset(s.type));
   Kernel kernel;
   kernel.permutation = permutationTable(s.seed).data();
   const uint32_t seedMix = kernel.noiseSeedMix(s.seed);
@@ -45,7 +46,7 @@ bool craterOfCell(const NoiseSettings& s, int i, int j, int k, Crater& crater) {
   if (double(h2 & 0xffffu) / 65536.0 >= double(Kernel::kCraterPresence)) return false;
   crater.size = Kernel::kCraterRadiusMin + (1.0 - Kernel::kCraterRadiusMin) * double(h2 >> 16u) / 65536.0;
   crater.radius = Kernel::kCraterRadiusMax * crater.size;
-  const double margin = std::max(Kernel::kCraterReach * crater.radius - 0.5, 0.0);
+  const double margin = std::max(Kernel::kCraterReach * crater.radius * (1.0 + eps) - 0.5, 0.0);
   const double span = 1.0 - 2.0 * margin;
   crater.centre =
       glm::dvec3(i, j, k) + margin + span * glm::dvec3(h >> 16u, h & 0xffffu, kernel.craterMix(h2) >> 16u) / 65536.0;
@@ -63,13 +64,26 @@ std::vector<Crater> cratersIn(const NoiseSettings& s, glm::ivec3 lo, glm::ivec3 
   return found;
 }
 
-// True when no other crater's reach overlaps this one's (its profile is then alone).
-bool isolated(const Crater& c, const std::vector<Crater>& all) {
+// True when no other crater's reach (grown by the largest perturbation, 1 + eps) overlaps this
+// one's (its profile is then alone).
+bool isolated(const Crater& c, const std::vector<Crater>& all, double eps = 0.0) {
   for (const Crater& o : all) {
     if (&o == &c) continue;
-    if (glm::length(o.centre - c.centre) < Kernel::kCraterReach * (o.radius + c.radius)) return false;
+    if (glm::length(o.centre - c.centre) < Kernel::kCraterReach * (1.0 + eps) * (o.radius + c.radius)) return false;
   }
   return true;
+}
+
+// Isolated craters whose neighbours all lie inside the cells [0, 12)^3 searched.
+std::vector<Crater> isolatedCraters(const NoiseSettings& s) {
+  const double eps = s.offset.value_or(defaultOffset(s.type));
+  const std::vector<Crater> all = cratersIn(s, {0, 0, 0}, {12, 12, 12});
+  std::vector<Crater> found;
+  for (const Crater& c : all)
+    if (glm::all(glm::greaterThan(c.centre, glm::dvec3(1.0))) && glm::all(glm::lessThan(c.centre, glm::dvec3(11.0))) &&
+        isolated(c, all, eps))
+      found.push_back(c);
+  return found;
 }
 
 TEST(CraterProperties, IsolatedCratersAreBowlsBelowAndRimsAboveTheirSurroundings) {
@@ -104,6 +118,60 @@ TEST(CraterProperties, IsolatedCratersAreBowlsBelowAndRimsAboveTheirSurroundings
       }
     }
     EXPECT_GT(checked, 20) << "too few isolated craters to test, hash " << noiseHashName(hash);
+  }
+}
+
+TEST(CraterProperties, RimPerturbationMakesRimsNeitherRoundNorLevel) {
+  // Around an isolated crater, along 36 directions in the plane through its centre: where the
+  // bowl crosses the surrounding level (the floor's edge) and how high the rim rises. Without
+  // perturbation both are the same in every direction (a circle, a level rim); with eps they vary
+  // with the simplex value n at twice the octave's frequency: radius r (1 + eps n), rim height
+  // kCraterRim (1 + eps n) size, so within eps of the unperturbed ones.
+  for (double eps : {0.0, 0.25}) {
+    const NoiseSettings s = craters(NoiseHash::Fast, 4, 1, eps);
+    const std::vector<Crater> found = isolatedCraters(s);
+    ASSERT_GT(found.size(), 10u) << eps;
+    double largestEdgeSpread = 0.0, largestRimSpread = 0.0, sumEdgeSpread = 0.0, sumRimSpread = 0.0;
+    for (const Crater& c : found) {
+      const double r = c.radius;
+      // Unperturbed: the bowl R - (1 + R)(1 - rho^2)^2 is 0 at rho^2 = 1 - sqrt(R / (1 + R)).
+      const double R = Kernel::kCraterRim;
+      const double edge0 = r * std::sqrt(1.0 - std::sqrt(R / (1.0 + R)));
+      double edgeLo = 1e9, edgeHi = 0.0, rimLo = 1e9, rimHi = 0.0;
+      for (int d = 0; d < 36; ++d) {
+        const double angle = 2.0 * 3.14159265358979 * d / 36.0;
+        const glm::dvec3 dir(std::cos(angle), std::sin(angle), 0.0);
+        auto at = [&](double t) { return double(evaluateCpu(s, glm::vec3(c.centre + t * dir))); };
+        // The floor's edge by bisection between the centre (below 0) and the rim (above).
+        double lo = 0.0, hi = r * (1.0 + eps);
+        for (int k = 0; k < 30; ++k) (at(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+        edgeLo = std::min(edgeLo, lo), edgeHi = std::max(edgeHi, lo);
+        double rim = 0.0;
+        for (int k = 0; k <= 60; ++k) rim = std::max(rim, at(r * (1.0 - eps + 2.0 * eps * k / 60.0 + 0.001)));
+        rimLo = std::min(rimLo, rim), rimHi = std::max(rimHi, rim);
+        EXPECT_GE(lo, edge0 * (1.0 - eps) - 1e-4) << "edge inside the perturbed circle, eps " << eps;
+        EXPECT_LE(lo, edge0 * (1.0 + eps) + 1e-4) << "edge outside the perturbed circle, eps " << eps;
+        EXPECT_GE(rim, R * c.size * (1.0 - eps) - 1e-4) << "rim too low, eps " << eps;
+        EXPECT_LE(rim, R * c.size * (1.0 + eps) + 1e-4) << "rim too high, eps " << eps;
+      }
+      const double edgeSpread = (edgeHi - edgeLo) / r, rimSpread = (rimHi - rimLo) / c.size;
+      largestEdgeSpread = std::max(largestEdgeSpread, edgeSpread);
+      largestRimSpread = std::max(largestRimSpread, rimSpread);
+      sumEdgeSpread += edgeSpread, sumRimSpread += rimSpread;
+    }
+    const double meanEdgeSpread = sumEdgeSpread / double(found.size());
+    const double meanRimSpread = sumRimSpread / double(found.size());
+    std::printf(
+        "eps %.2f, %zu craters: floor edge varies by %.4f radii (mean; largest %.4f), rim height by %.4f "
+        "size (largest %.4f)\n",
+        eps, found.size(), meanEdgeSpread, largestEdgeSpread, meanRimSpread, largestRimSpread);
+    if (eps == 0.0) {
+      EXPECT_LT(largestEdgeSpread, 1e-5) << "an unperturbed crater is round";
+      EXPECT_LT(largestRimSpread, 1e-5) << "an unperturbed rim is level";
+    } else {
+      EXPECT_GT(meanEdgeSpread, 0.02) << "perturbed craters should not be round";
+      EXPECT_GT(meanRimSpread, 0.01) << "perturbed rims should not be level";
+    }
   }
 }
 

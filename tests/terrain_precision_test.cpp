@@ -65,6 +65,28 @@ TEST(TerrainPrecision, RebasedFloatHeightsMatchDoubleWithinOneCentimetreAndAreSm
   }
 }
 
+TEST(TerrainPrecision, RebasedMoonCratersMatchDoubleWithinOneCentimetre) {
+  // The crater layer's rebased walk turns each octave's simplex lattice shift into the cubic cell
+  // shift (noise.glsl, craterCellShift): a wrong cell there moves every crater by whole cells,
+  // metres to kilometres of height, while the other layers would still agree.
+  const PlanetDescription moon = resolvePreset("moon");
+  for (auto [lat, lon] : {std::pair{12.0, -48.0}, std::pair{-71.5, 133.3}}) {
+    const Line line = sampleLine(moon, lat, lon);
+    const OctaveTables tables = buildOctaveTables(moon, line.anchor);
+    std::vector<double> rebased, reference;
+    double worst = 0;
+    for (const glm::dvec3& p : line.points) {
+      rebased.push_back(terrainHeightRebased(moon, tables, glm::vec3(p - line.anchor)));
+      reference.push_back(terrainHeightM(moon, p / moon.radiusM));
+      worst = std::max(worst, std::abs(rebased.back() - reference.back()));
+    }
+    std::printf("moon %.2f, %.2f: worst %.2f mm, step error %.2f mm\n", lat, lon, worst * 1e3,
+                maxStepError(rebased, reference) * 1e3);
+    EXPECT_LT(worst, kToleranceM) << "at " << lat << ", " << lon;
+    EXPECT_LT(maxStepError(rebased, reference), 0.0075) << lat << ", " << lon;
+  }
+}
+
 TEST(TerrainPrecision, PlainFloatEvaluationFailsAtEarthScale) {
   // Without rebasing, the float noise input of the hills layer (318 units of 20 km from the
   // origin) moves in steps of 0.6 m, so the metre-scale octaves are evaluated at the wrong
@@ -72,7 +94,8 @@ TEST(TerrainPrecision, PlainFloatEvaluationFailsAtEarthScale) {
   // 1.3 m on these lines).
   const PlanetDescription earth = resolvePreset("earth");
   double worst = 0;
-  for (auto [lat, lon] : {std::pair{37.1, -122.3}, std::pair{33.8, -90.0}, std::pair{17.8, 0.0}, std::pair{-21.1, -30.0}}) {
+  for (auto [lat, lon] :
+       {std::pair{37.1, -122.3}, std::pair{33.8, -90.0}, std::pair{17.8, 0.0}, std::pair{-21.1, -30.0}}) {
     const Line line = sampleLine(earth, lat, lon);
     for (const glm::dvec3& p : line.points) {
       double h = earth.baseHeightM;
