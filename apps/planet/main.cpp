@@ -8,9 +8,11 @@
 
 #include "cli_common.h"
 #include "core/error.h"
+#include "core/process_memory.h"
 
 int main(int argc, char** argv) {
   using namespace planet;
+  keepLargeBlocksOutOfTheHeap();  // before any allocation the driver's compiles could fragment
   CLI::App app{"planet: procedural Earth-scale planets rendered with Vulkan compute (CPU via lavapipe or GPU)",
                "planet"};
   app.require_subcommand(0, 1);  // checked after parsing, for a clearer message

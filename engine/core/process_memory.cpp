@@ -4,6 +4,10 @@
 
 #include <cstdio>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace planet {
 
 int64_t residentKiB() {
@@ -14,6 +18,13 @@ int64_t residentKiB() {
   std::fclose(f);
   const long pageKiB = sysconf(_SC_PAGESIZE) / 1024;
   return read == 2 && pageKiB > 0 ? int64_t(resident) * pageKiB : 0;
+}
+
+void keepLargeBlocksOutOfTheHeap() {
+#if defined(__GLIBC__)
+  // Setting the threshold explicitly also turns off glibc's dynamic raising of it (mallopt(3)).
+  mallopt(M_MMAP_THRESHOLD, kLargeBlockBytes);
+#endif
 }
 
 }  // namespace planet
