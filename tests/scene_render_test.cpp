@@ -40,8 +40,7 @@ SceneView viewFrom(const SceneDescription& scene, double timeS, size_t body, con
   const std::vector<BodyState> states = sceneStateAt(scene, timeS);
   SceneView view;
   const BodyState& on = states[body];
-  view.camera = {on.positionM + on.bodyToScene * local.position, on.bodyToScene * local.forward,
-                 on.bodyToScene * local.up};
+  view.camera = cameraToScene(on.positionM, on.bodyToScene, local);
   view.bodies = sceneBodyViews(states);
   view.timeS = timeS;
   return view;

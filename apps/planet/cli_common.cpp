@@ -155,4 +155,9 @@ SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& t
   return camera;
 }
 
+void checkSceneExcludes(const CLI::App& command) {
+  if (command.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
+  if (command.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+}
+
 }  // namespace planet::cli

@@ -78,6 +78,9 @@ struct SceneCamera {
   CameraPose pose;
 };
 SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& text);
+// With --scene: --preset and --sun are usage errors (the scene names its presets, its sun is at
+// its origin).
+void checkSceneExcludes(const CLI::App& command);
 
 // A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
 // characters in the message (a newline inside a quoted argument) become '?', so that it stays

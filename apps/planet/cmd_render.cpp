@@ -1,7 +1,6 @@
 // planet render: one frame of a preset, offscreen (lavapipe or GPU), written to a PNG.
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -10,6 +9,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "planet/scene_description.h"
+#include "planet/terrain_height.h"
 #include "render/renderer.h"
 #include "vk/context.h"
 
@@ -45,8 +45,7 @@ void printTimings(const RenderResult& result) {
 // optionally turned toward another (--look-at BODY).
 int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::App& sub,
                    const RenderSettings& settings) {
-  if (sub.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
-  if (sub.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+  checkSceneExcludes(sub);
   SceneDescription scene;
   size_t body = 0;
   CameraPose pose;
@@ -73,8 +72,7 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   if (target)
     local = lookingAt(local.position, glm::transpose(on.bodyToScene) * (states[*target].positionM - on.positionM));
   SceneView view;
-  view.camera = {on.positionM + on.bodyToScene * local.position, on.bodyToScene * local.forward,
-                 on.bodyToScene * local.up};
+  view.camera = cameraToScene(on.positionM, on.bodyToScene, local);
   view.bodies = sceneBodyViews(states);
   view.timeS = cmd.timeS;
 
@@ -109,11 +107,11 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
     if (i == primary) continue;
     const glm::dvec3 d = glm::normalize(sceneToPrimary * (states[i].positionM - states[primary].positionM));
     overhead += fmt::format("{}{} at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ", scene.bodies[i].name,
-                            std::asin(d.z) * 180.0 / std::numbers::pi, std::atan2(d.y, d.x) * 180.0 / std::numbers::pi);
+                            latitudeDegOf(d), longitudeDegOf(d));
   }
   const glm::dvec3 sun = glm::normalize(sceneToPrimary * -states[primary].positionM);
-  overhead += fmt::format("{}the sun at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ",
-                          std::asin(sun.z) * 180.0 / std::numbers::pi, std::atan2(sun.y, sun.x) * 180.0 / std::numbers::pi);
+  overhead += fmt::format("{}the sun at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ", latitudeDegOf(sun),
+                          longitudeDegOf(sun));
   fmt::print("overhead on {}: {}\n", scene.bodies[primary].name, overhead);
   printTimings(result);
   return finishWithValidation(*context, 0);

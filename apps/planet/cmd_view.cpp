@@ -55,8 +55,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   if (!(cmd.timeScale >= 0.0 && cmd.timeScale <= 1e6))
     throw UsageError(fmt::format("--time-scale must be in [0, 1e6], got {}", cmd.timeScale));
   if (sub.count("--scene")) {
-    if (sub.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
-    if (sub.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+    checkSceneExcludes(sub);
     if (sub.count("--path")) throw UsageError("--path does not apply to --scene (camera paths are on one planet)");
     try {
       SceneDescription scene = resolveScene(cmd.scene);

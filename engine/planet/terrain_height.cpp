@@ -23,6 +23,11 @@ glm::dvec3 directionFromLatLon(double latitudeDeg, double longitudeDeg) {
   return {std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)};
 }
 
+double latitudeDegOf(const glm::dvec3& d) {
+  return std::atan2(d.z, std::hypot(d.x, d.y)) / (std::numbers::pi / 180.0);
+}
+double longitudeDegOf(const glm::dvec3& d) { return std::atan2(d.y, d.x) / (std::numbers::pi / 180.0); }
+
 glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double distanceM, double radiusM) {
   // Local east and north at `start`; at a pole, "north" is taken along longitude 0 (+x).
   const glm::dvec3 up = glm::normalize(start);
@@ -48,6 +53,11 @@ double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& directi
     sum += layer.amplitudeM * kernel.evaluateNoise(params, onSphere * layer.frequency);
   }
   return planet.heightScale * sum;
+}
+
+double surfaceHeightM(const PlanetDescription& planet, const glm::dvec3& direction) {
+  const double ground = terrainHeightM(planet, direction);
+  return planet.hasOcean ? std::max(ground, planet.seaLevelM) : ground;
 }
 
 TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet) {

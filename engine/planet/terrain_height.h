@@ -15,6 +15,9 @@ namespace planet {
 // 90° east. Angles in degrees; throws planet::Error for a latitude outside [-90, 90] or a
 // non-finite value.
 glm::dvec3 directionFromLatLon(double latitudeDeg, double longitudeDeg);
+// Its inverse for any non-zero direction (not necessarily unit): degrees, longitude in [−180, 180].
+double latitudeDegOf(const glm::dvec3& direction);
+double longitudeDegOf(const glm::dvec3& direction);
 
 // The direction reached from `start` after travelling `distanceM` along the great circle with
 // initial `bearingDeg` (clockwise from north) on a sphere of radius `radiusM`.
@@ -26,6 +29,10 @@ glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double 
 // surface. spacingM > 0: each layer is limited to octaveBudget(layer, spacingM), as the renderer
 // limits a vertex or texel that far from its neighbours (octave_budget.h).
 double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction, double spacingM = 0.0);
+
+// What a camera stands on at `direction`: the full-detail terrain height, or the sea level
+// where the planet has an ocean above it (metres above the radius sphere).
+double surfaceHeightM(const PlanetDescription& planet, const glm::dvec3& direction);
 
 // Estimates of the lowest and highest terrain of the planet, for the horizon cut: the extremes
 // over 4096 directions spread evenly over the sphere (a Fibonacci lattice) at ~200 km spacing,

@@ -97,8 +97,8 @@ CameraPose cameraPoseFromBasis(const CameraBasis& basis, double seaLevelRadiusM)
   const glm::dvec3 direction = basis.position / distance;
   const LocalAxes axes = localAxes(direction);
   CameraPose pose;
-  pose.latitudeDeg = std::asin(std::clamp(direction.z, -1.0, 1.0)) / kDegree;
-  pose.longitudeDeg = std::atan2(direction.y, direction.x) / kDegree;
+  pose.latitudeDeg = latitudeDegOf(direction);
+  pose.longitudeDeg = longitudeDegOf(direction);
   pose.altitudeM = distance - seaLevelRadiusM;
   const double sinPitch = std::clamp(glm::dot(basis.forward, axes.up), -1.0, 1.0);
   const double pitch = std::asin(sinPitch);

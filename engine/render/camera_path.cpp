@@ -189,8 +189,7 @@ double frameTimeS(const CameraPath& path, uint32_t frame, uint32_t frameCount) {
 }
 
 CameraPose cameraPoseAt(const CameraKey& key, const PlanetDescription& planet) {
-  const double ground = terrainHeightM(planet, directionFromLatLon(key.latitudeDeg, key.longitudeDeg));
-  const double surface = planet.hasOcean ? std::max(ground, planet.seaLevelM) : ground;
+  const double surface = surfaceHeightM(planet, directionFromLatLon(key.latitudeDeg, key.longitudeDeg));
   return CameraPose{key.latitudeDeg, key.longitudeDeg, surface + key.heightM, key.headingDeg, key.pitchDeg};
 }
 

@@ -40,9 +40,6 @@ double wrapHeadingDeg(double deg) {
 
 double finiteOr(double value, double fallback) { return std::isfinite(value) ? value : fallback; }
 
-double latitudeDegOf(const glm::dvec3& d) { return std::atan2(d.z, std::hypot(d.x, d.y)) / kDegree; }
-double longitudeDegOf(const glm::dvec3& d) { return std::atan2(d.y, d.x) / kDegree; }
-
 // Unit horizontal direction of `headingDeg` in `axes`.
 glm::dvec3 levelDirection(const LocalAxes& axes, double headingDeg) {
   const double h = headingDeg * kDegree;

@@ -170,8 +170,7 @@ CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const
 }
 
 CameraPose Renderer::raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised) {
-  const double ground = terrainHeightM(planet, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg));
-  const double surface = planet.hasOcean ? std::max(ground, planet.seaLevelM) : ground;
+  const double surface = surfaceHeightM(planet, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg));
   CameraPose result = camera;
   const bool below = camera.altitudeM < surface + kMinEyeHeightM;
   if (below) result.altitudeM = surface + kMinEyeHeightM;
@@ -209,17 +208,25 @@ void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAtt
 
 Renderer::Prepared Renderer::prepare(const CameraPose& requested, const glm::dvec3& sunPlanet, double timeS,
                                      uint32_t slot) {
-  if (bodies_.size() != 1)
-    throw Error(fmt::format("Renderer::prepare places the camera on one planet; this renderer draws {} bodies "
-                            "(use prepareScene)",
-                            bodies_.size()));
+  checkOnePlanet("prepare", "prepareScene");
   bool raised = false;
   const CameraPose camera = clampToGround(requested, &raised);
+  return prepareFrame(onePlanetView(camera, sunPlanet, timeS), 0, camera, raised, slot);
+}
+
+void Renderer::checkOnePlanet(const char* call, const char* sceneCall) const {
+  if (bodies_.size() != 1)
+    throw Error(fmt::format("Renderer::{} places the camera on one planet; this renderer draws {} bodies (use {})",
+                            call, bodies_.size(), sceneCall));
+}
+
+SceneView Renderer::onePlanetView(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS) const {
+  // The planet frame is the scene frame: the body at the origin, unturned.
   SceneView view;
   view.camera = cameraBasis(camera, bodies_[0].planet.radiusM);
   view.bodies = {SceneBodyView{glm::dvec3(0.0), glm::dmat3(1.0), sunPlanet}};
   view.timeS = timeS;
-  return prepareFrame(view, 0, camera, raised, slot);
+  return view;
 }
 
 std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states) {
@@ -230,6 +237,15 @@ std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states) 
                      distance > 0.0 ? -state.positionM / distance : glm::dvec3(0.0, 0.0, 1.0)});
   }
   return views;
+}
+
+CameraBasis cameraToScene(const glm::dvec3& positionM, const glm::dmat3& bodyToScene, const CameraBasis& local) {
+  return {positionM + bodyToScene * local.position, bodyToScene * local.forward, bodyToScene * local.up};
+}
+
+CameraBasis cameraToBody(const glm::dvec3& positionM, const glm::dmat3& bodyToScene, const CameraBasis& scene) {
+  const glm::dmat3 sceneToBody = glm::transpose(bodyToScene);
+  return {sceneToBody * (scene.position - positionM), sceneToBody * scene.forward, sceneToBody * scene.up};
 }
 
 Renderer::Prepared Renderer::prepareScene(const SceneView& requested, uint32_t slot) {
@@ -246,9 +262,7 @@ Renderer::Prepared Renderer::prepareScene(const SceneView& requested, uint32_t s
   // The eye-height rule on that body, in its frame: a camera below its ground is raised along
   // the vertical, its view direction kept.
   const SceneBodyView& body = requested.bodies[primary];
-  const glm::dmat3 sceneToBody = glm::transpose(body.bodyToScene);
-  CameraBasis local{sceneToBody * (requested.camera.position - body.positionM), sceneToBody * requested.camera.forward,
-                    sceneToBody * requested.camera.up};
+  const CameraBasis local = cameraToBody(body.positionM, body.bodyToScene, requested.camera);
   const double radius = bodies_[primary].planet.radiusM;
   bool raised = false;
   const CameraPose pose = raisedAboveGround(bodies_[primary].planet, cameraPoseFromBasis(local, radius), &raised);
@@ -274,18 +288,14 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
 
   // Each body sees the camera and the sun in its own frame.
   std::vector<TerrainView> views(bodies_.size());
-  std::vector<glm::dmat3> sceneToBody(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) {
     const SceneBodyView& body = view.bodies[i];
-    sceneToBody[i] = glm::transpose(body.bodyToScene);
     TerrainView& t = views[i];
-    t.camera.position = sceneToBody[i] * (view.camera.position - body.positionM);
-    t.camera.forward = sceneToBody[i] * view.camera.forward;
-    t.camera.up = sceneToBody[i] * view.camera.up;
+    t.camera = cameraToBody(body.positionM, body.bodyToScene, view.camera);
     t.fovYRad = settings_.fovYDeg * std::numbers::pi / 180.0;
     t.width = settings_.width;
     t.height = settings_.height;
-    t.sunDirection = sceneToBody[i] * body.sunDirection;
+    t.sunDirection = glm::transpose(body.bodyToScene) * body.sunDirection;
     t.timeS = view.timeS;
   }
   // One depth buffer: every body takes the nearest near plane. The primary body's own rule
@@ -309,6 +319,9 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     if (bodies_[i].planet.atmosphere.enabled) farther.emplace_back(glm::length(views[i].camera.position), i);
   }
   std::sort(farther.begin(), farther.end(), std::greater<>());
+  // Every body's view shares the camera's projection (the frames differ by rotations only).
+  const glm::dmat4 projection =
+      reversedZPerspective(views[primary].fovYRad, double(settings_.width) / double(settings_.height), nearPlane);
   composeOrder_.clear();
   for (const auto& [distance, i] : farther) composeOrder_.push_back(i);
   composeOrder_.push_back(primary);
@@ -317,8 +330,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     if (!bodies_[i].rings) continue;
     const TerrainView& t = views[i];
     RingView ring;
-    ring.viewProjection = reversedZPerspective(t.fovYRad, double(t.width) / double(t.height), nearPlane) *
-                          viewMatrix(t.camera.forward, t.camera.up);
+    ring.viewProjection = projection * viewMatrix(t.camera.forward, t.camera.up);
     ring.cameraBody = t.camera.position;
     ring.sunBody = t.sunDirection;
     ring.planetRadiusM = bodies_[i].planet.radiusM;
@@ -338,8 +350,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     const glm::dmat3 planetToLocal = glm::transpose(bodyFrame.viewOrientation.localToPlanet);
     SkyView skyView;
     skyView.lowestSurfaceM = bodies_[i].terrain->lowestSurfaceM();
-    skyView.viewProjection = reversedZPerspective(t.fovYRad, double(t.width) / double(t.height), nearPlane) *
-                             viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);
+    skyView.viewProjection = projection * viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);
     skyView.localToPlanet = bodyFrame.viewOrientation.localToPlanet;
     skyView.forward = planetToLocal * t.camera.forward;
     skyView.sunLocal = planetToLocal * t.sunDirection;
@@ -357,7 +368,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
   }
   // Stars are fixed in the scene frame: scene direction → the primary body's frame → local → clip
   // (a push constant).
-  starsToClip_ = glm::mat4(primaryViewProjection * glm::dmat4(primaryPlanetToLocal * sceneToBody[primary]));
+  const glm::dmat3 sceneToPrimary = glm::transpose(view.bodies[primary].bodyToScene);
+  starsToClip_ = glm::mat4(primaryViewProjection * glm::dmat4(primaryPlanetToLocal * sceneToPrimary));
   preparedSlot_ = slot;
   return prepared;
 }
@@ -421,19 +433,13 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
 }
 
 RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {
-  if (bodies_.size() != 1)
-    throw Error(fmt::format("Renderer::render places the camera on one planet; this renderer draws {} bodies "
-                            "(use renderScene)",
-                            bodies_.size()));
+  checkOnePlanet("render", "renderScene");
   // The sun is placed from the camera's ground point as rendered (after the eye-height rule,
   // applied once here).
   bool raised = false;
   const CameraPose camera = clampToGround(requested, &raised);
-  SceneView view;
-  view.camera = cameraBasis(camera, bodies_[0].planet.radiusM);
-  view.bodies = {SceneBodyView{glm::dvec3(0.0), glm::dmat3(1.0), sunDirection(sun, camera)}};
-  view.timeS = timeS;
-  return finishFrame(prepareFrame(view, 0, camera, raised, 0), readHdr);
+  return finishFrame(prepareFrame(onePlanetView(camera, sunDirection(sun, camera), timeS), 0, camera, raised, 0),
+                     readHdr);
 }
 
 RenderResult Renderer::renderScene(const SceneView& view, bool readHdr) {

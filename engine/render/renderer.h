@@ -69,6 +69,10 @@ struct SceneView {
 };
 // The bodies' views at their scene positions, lit by a sun at the scene's origin.
 std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states);
+// A camera between a body's frame and the scene frame (the body's centre at positionM, its
+// frame turned by bodyToScene), in double.
+CameraBasis cameraToScene(const glm::dvec3& positionM, const glm::dmat3& bodyToScene, const CameraBasis& local);
+CameraBasis cameraToBody(const glm::dvec3& positionM, const glm::dmat3& bodyToScene, const CameraBasis& scene);
 
 class Renderer {
  public:
@@ -157,6 +161,9 @@ class Renderer {
                         uint32_t slot);
   static CameraPose raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised);
   RenderResult finishFrame(const Prepared& prepared, bool readHdr);
+  // The one-planet calls (prepare, render) on a renderer of one body: throws otherwise.
+  void checkOnePlanet(const char* call, const char* sceneCall) const;
+  SceneView onePlanetView(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS) const;
   void createTargets();
   void destroyTargets();
   std::vector<glm::vec4> readHdrImage();

@@ -1,7 +1,5 @@
 #include "render/scene_flight.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -21,12 +19,7 @@ SceneFlight::SceneFlight(const SceneDescription& scene, size_t body, const Camer
 
 void SceneFlight::makeCamera(size_t body, const CameraPose& pose, FlightMode mode) {
   const PlanetDescription& planet = scene_.bodies[body].planet;
-  const bool ocean = planet.hasOcean;
-  const double seaLevel = planet.seaLevelM;
-  auto ground = [planet, ocean, seaLevel](const glm::dvec3& direction) {
-    const double height = terrainHeightM(planet, direction);
-    return ocean ? std::max(height, seaLevel) : height;
-  };
+  auto ground = [planet](const glm::dvec3& direction) { return surfaceHeightM(planet, direction); };
   auto camera = std::make_unique<FlightCamera>(planet.radiusM, ground, settings_);
   camera->setMode(mode);
   camera->setPose(pose);
@@ -36,9 +29,7 @@ void SceneFlight::makeCamera(size_t body, const CameraPose& pose, FlightMode mod
 
 CameraBasis SceneFlight::sceneCamera() const {
   const BodyState& on = states_[reference_];
-  const CameraBasis local = camera_->basis();
-  return {on.positionM + on.bodyToScene * local.position, on.bodyToScene * local.forward,
-          on.bodyToScene * local.up};
+  return cameraToScene(on.positionM, on.bodyToScene, camera_->basis());
 }
 
 void SceneFlight::rebase() {
@@ -46,9 +37,7 @@ void SceneFlight::rebase() {
   const size_t nearest = sceneReferenceBody(scene_, states_, world.position);
   if (nearest == reference_) return;
   const BodyState& to = states_[nearest];
-  const glm::dmat3 sceneToBody = glm::transpose(to.bodyToScene);
-  const CameraBasis local{sceneToBody * (world.position - to.positionM), sceneToBody * world.forward,
-                          sceneToBody * world.up};
+  const CameraBasis local = cameraToBody(to.positionM, to.bodyToScene, world);
   makeCamera(nearest, cameraPoseFromBasis(local, scene_.bodies[nearest].planet.radiusM), camera_->mode());
   ++switches_;
 }
@@ -62,7 +51,8 @@ void SceneFlight::update(const FlightInput& userInput, double timeS) {
   FlightInput input = userInput;
   if (travelTarget_ && (input.lookX != 0.0 || input.lookY != 0.0)) travelTarget_ = std::nullopt;
   if (travelTarget_) {
-    if (*travelTarget_ != reference_) lookAt(*travelTarget_);  // (in its frame: aimed down after the last update)
+    // Once in the target's frame, the end of the last update aimed the camera down at it.
+    if (*travelTarget_ != reference_) lookAt(*travelTarget_);
     input.forward = 1.0;
     input.right = input.up = input.zoom = 0.0;
     input.speedFactor = kTravelSpeedFactor;

@@ -163,34 +163,26 @@ void Viewer::construct() {
   settings_.water = settings_.planet.hasOcean;
 
   if (options.scene) {
-    // The panel shows the body the camera starts on; the scene's presets are not edited.
-    settings_.planet = options.scene->bodies[options.sceneBody].planet;
+    // The panel shows options.planet, the body the camera starts on; the scene's presets are
+    // not edited from it.
     sceneTimeS_ = options.sceneTimeS;
     flight_ = std::make_unique<SceneFlight>(*options.scene, options.sceneBody, options.camera.value_or(CameraPose{}),
                                             sceneTimeS_);
     if (options.travelTo) flight_->travelTo(*options.travelTo);
-    createSwapchainResources();
-    createUi();
-    buildRenderer();
-    if (options.hideUi) ui_.togglePanel();
-    return;
+  } else {
+    const PlanetDescription& planet = settings_.planet;
+    camera_ = std::make_unique<FlightCamera>(
+        planet.radiusM, [planet](const glm::dvec3& direction) { return surfaceHeightM(planet, direction); });
+    CameraPose start = options.camera.value_or(CameraPose{});
+    if (options.path) start = cameraPoseAt(sampleCameraPath(*options.path, options.path->startS()), planet);
+    // A view toward the horizon is free flight; a view down at the planet is orbit.
+    if (options.path || start.pitchDeg > camera().settings().orbitMaxPitchDeg) camera().setMode(FlightMode::Free);
+    camera().setPose(start);
+    // The sun stays where --sun puts it for the starting camera: fixed in the planet frame.
+    const glm::dvec3 sun = sunDirection(options.sun, camera().pose());
+    settings_.sunLatitudeDeg = degrees(std::asin(std::clamp(sun.z, -1.0, 1.0)));
+    settings_.sunLongitudeDeg = degrees(std::atan2(sun.y, sun.x));
   }
-  const PlanetDescription& planet = settings_.planet;
-  const bool ocean = planet.hasOcean;
-  const double seaLevel = planet.seaLevelM;
-  camera_ = std::make_unique<FlightCamera>(planet.radiusM, [planet, ocean, seaLevel](const glm::dvec3& direction) {
-    const double ground = terrainHeightM(planet, direction);
-    return ocean ? std::max(ground, seaLevel) : ground;
-  });
-  CameraPose start = options.camera.value_or(CameraPose{});
-  if (options.path) start = cameraPoseAt(sampleCameraPath(*options.path, options.path->startS()), planet);
-  // A view toward the horizon is free flight; a view down at the planet is orbit.
-  if (options.path || start.pitchDeg > camera().settings().orbitMaxPitchDeg) camera().setMode(FlightMode::Free);
-  camera().setPose(start);
-  // The sun stays where --sun puts it for the starting camera: fixed in the planet frame.
-  const glm::dvec3 sun = sunDirection(options.sun, camera().pose());
-  settings_.sunLatitudeDeg = degrees(std::asin(std::clamp(sun.z, -1.0, 1.0)));
-  settings_.sunLongitudeDeg = degrees(std::atan2(sun.y, sun.x));
 
   createSwapchainResources();
   createUi();
