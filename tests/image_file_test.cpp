@@ -227,6 +227,12 @@ TEST_F(ImageFile, ReadPngOfMissingTextTruncatedOrCorruptFileThrowsNamingThePath)
   EXPECT_EQ(error.rfind("cannot read '" + hollow + "': corrupt PNG (", 0), 0u) << error;
 
   EXPECT_EQ(errorOf([&] { readPng(dir_.string()); }), "cannot read '" + dir_.string() + "': Is a directory");
+
+  // A name with a newline and an escape (a file may be called that) is shown with '?' for
+  // each, so the message stays one line and cannot drive the terminal.
+  std::string odd = path("two\nlines\x1b[2J.png");
+  writeBytes(odd, {'x'});
+  EXPECT_EQ(errorOf([&] { readPng(odd); }), "cannot read '" + path("two?lines?[2J.png") + "': not a PNG file");
 }
 
 TEST_F(ImageFile, ReadPngConvertsGreyGreyAlphaAndRgbToRgba) {

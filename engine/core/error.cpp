@@ -2,6 +2,22 @@
 
 namespace planet {
 
+std::string printable(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return out;
+}
+
+std::string quotedPath(std::string_view path) {
+  std::string out;
+  out.reserve(path.size() + 2);
+  out += '\'';
+  out += printable(path);
+  out += '\'';
+  return out;
+}
+
 const char* vkResultName(VkResult result) {
   switch (result) {
 #define PLANET_RESULT_NAME(r) \

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <vulkan/vulkan.h>
 
@@ -14,6 +15,14 @@ class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// User text (a path, a name) as it may appear inside a one-line message: every control byte
+// (a newline, a tab, an escape) becomes '?', so a message stays one line and cannot move the
+// terminal's cursor whatever the user passed.
+std::string printable(std::string_view text);
+
+// "'path'" with printable() applied: how messages name a file.
+std::string quotedPath(std::string_view path);
 
 // A Vulkan call returned an error code; result() lets callers react to specific codes
 // (VK_ERROR_DEVICE_LOST, VK_ERROR_OUT_OF_DEVICE_MEMORY, ...).

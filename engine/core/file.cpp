@@ -20,13 +20,13 @@ void writeTemporary(const std::string& path, std::string_view contents) {
   if (path.empty()) throw Error("output file name is empty");
   const std::string temp = temporaryName(path);
   std::FILE* file = std::fopen(temp.c_str(), "wb");
-  if (!file) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+  if (!file) throw Error("cannot write " + quotedPath(path) + ": " + std::strerror(errno));
   bool ok = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
   int writeErrno = errno;
   ok = (std::fclose(file) == 0) && ok;
   if (!ok) {
     std::remove(temp.c_str());
-    throw Error("cannot write '" + path + "': " + std::strerror(writeErrno ? writeErrno : errno));
+    throw Error("cannot write " + quotedPath(path) + ": " + std::strerror(writeErrno ? writeErrno : errno));
   }
 }
 
@@ -50,7 +50,7 @@ void writeFilesAtomic(std::span<const FileContents> files) {
     struct stat info {};
     if (::stat(file.path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
       for (const FileContents& f : files) std::remove(temporaryName(f.path).c_str());
-      throw Error("cannot write '" + file.path + "': " + std::strerror(EISDIR));
+      throw Error("cannot write " + quotedPath(file.path) + ": " + std::strerror(EISDIR));
     }
   }
   for (size_t i = 0; i < files.size(); ++i) {
@@ -58,20 +58,20 @@ void writeFilesAtomic(std::span<const FileContents> files) {
     if (std::rename(temp.c_str(), files[i].path.c_str()) != 0) {
       int renameErrno = errno;
       for (size_t j = i; j < files.size(); ++j) std::remove(temporaryName(files[j].path).c_str());
-      throw Error("cannot write '" + files[i].path + "': " + std::strerror(renameErrno));
+      throw Error("cannot write " + quotedPath(files[i].path) + ": " + std::strerror(renameErrno));
     }
   }
 }
 
 std::string readFileUpTo(const std::string& path, size_t limit) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) throw Error("cannot read '" + path + "': " + std::strerror(errno));
+  if (!file) throw Error("cannot read " + quotedPath(path) + ": " + std::strerror(errno));
   std::string text(limit + 1, '\0');
   const size_t size = std::fread(text.data(), 1, text.size(), file);
   const bool failed = std::ferror(file);
   const int readErrno = errno;
   std::fclose(file);
-  if (failed) throw Error("cannot read '" + path + "': " + std::strerror(readErrno));
+  if (failed) throw Error("cannot read " + quotedPath(path) + ": " + std::strerror(readErrno));
   text.resize(size);
   return text;
 }

@@ -97,12 +97,12 @@ std::vector<uint8_t> encodeChecked(const Rgba8Image& image) {
 
 std::vector<uint8_t> readWholeFile(const std::string& path) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
-  if (!file) throw Error("cannot read '" + path + "': " + std::strerror(errno));
+  if (!file) throw Error("cannot read " + quotedPath(path) + ": " + std::strerror(errno));
   std::vector<uint8_t> bytes;
   uint8_t buffer[1 << 16];
   size_t got;
   while ((got = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) bytes.insert(bytes.end(), buffer, buffer + got);
-  if (std::ferror(file.get())) throw Error("cannot read '" + path + "': " + std::strerror(errno));
+  if (std::ferror(file.get())) throw Error("cannot read " + quotedPath(path) + ": " + std::strerror(errno));
   return bytes;
 }
 
@@ -117,7 +117,7 @@ bool endsWith(const std::vector<uint8_t>& bytes, const uint8_t* suffix, size_t s
 // The bytes of a PNG file after the checks every reader makes before stb sees them.
 std::vector<uint8_t> readCheckedPng(const std::string& path) {
   std::vector<uint8_t> bytes = readWholeFile(path);
-  std::string prefix = "cannot read '" + path + "': ";
+  std::string prefix = "cannot read " + quotedPath(path) + ": ";
   if (!startsWith(bytes, kPngSignature, sizeof kPngSignature)) throw Error(prefix + "not a PNG file");
   // stb_image reads zeros past the end of its buffer, so a cut-off file is caught here.
   if (!endsWith(bytes, kPngEnd, sizeof kPngEnd)) throw Error(prefix + "truncated PNG (it does not end with IEND)");
@@ -238,19 +238,19 @@ std::vector<uint8_t> encodePng(const Rgba8Image& image) {
 
 void writePng(const std::string& path, const Rgba8Image& image) {
   std::string problem = encodeProblem(image);
-  if (!problem.empty()) throw Error("cannot write '" + path + "': " + problem);
+  if (!problem.empty()) throw Error("cannot write " + quotedPath(path) + ": " + problem);
   std::vector<uint8_t> bytes;
   try {
     bytes = encodeChecked(image);
   } catch (const Error& e) {
-    throw Error("cannot write '" + path + "': " + e.what());
+    throw Error("cannot write " + quotedPath(path) + ": " + e.what());
   }
   writeFileAtomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 Rgba8Image readPng(const std::string& path) {
   std::vector<uint8_t> bytes = readCheckedPng(path);
-  std::string prefix = "cannot read '" + path + "': ";
+  std::string prefix = "cannot read " + quotedPath(path) + ": ";
   int length = int(bytes.size());
   if (stbi_is_16_bit_from_memory(bytes.data(), length)) throw Error(prefix + "16-bit PNG (only 8-bit is supported)");
   int width = 0, height = 0, channels = 0;
@@ -298,7 +298,7 @@ std::vector<uint8_t> encodePng16(const Grey16Image& image) {
 
 Grey16Image readPng16(const std::string& path) {
   std::vector<uint8_t> bytes = readCheckedPng(path);
-  std::string prefix = "cannot read '" + path + "': ";
+  std::string prefix = "cannot read " + quotedPath(path) + ": ";
   int length = int(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))

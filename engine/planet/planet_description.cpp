@@ -345,7 +345,7 @@ PlanetDescription resolvePreset(const std::string& nameOrFile) {
   std::string names;
   for (const EmbeddedPreset& preset : embeddedPresets())
     names += fmt::format("{}{}", names.empty() ? "" : ", ", preset.name);
-  throw Error(fmt::format("unknown planet preset '{}' (built-in: {}; or a FILE.toml)", nameOrFile, names));
+  throw Error(fmt::format("unknown planet preset '{}' (built-in: {}; or a FILE.toml)", shortened(nameOrFile), names));
 }
 
 std::string canonicalForm(const PlanetDescription& d) {

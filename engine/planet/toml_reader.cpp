@@ -209,9 +209,7 @@ std::string shortened(std::string_view text, size_t limit) {
     end = limit;
     while (end > 0 && (uint8_t(text[end]) & 0xc0) == 0x80) --end;
   }
-  std::string out(text.substr(0, end));
-  for (char& c : out)
-    if (uint8_t(c) < 0x20 || c == 0x7f) c = '?';
+  std::string out = printable(text.substr(0, end));
   return end < text.size() ? out + "..." : out;
 }
 

@@ -46,9 +46,11 @@ class Context {
  public:
   explicit Context(const std::string& source) : source_(source) {}
 
+  // The message is made printable() whole: the source is a path the user chose and the
+  // message may quote an error from deeper down, and either could hold a newline.
   [[noreturn]] void fail(uint32_t line, const std::string& message) const {
-    if (line == 0) throw Error(fmt::format("{}: {}", source_, message));
-    throw Error(fmt::format("{}:{}: {}", source_, line, message));
+    if (line == 0) throw Error(printable(fmt::format("{}: {}", source_, message)));
+    throw Error(printable(fmt::format("{}:{}: {}", source_, line, message)));
   }
 
   const std::string& source() const { return source_; }
