@@ -219,6 +219,10 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"bench --fov 180", "", "--fov must be in (0, 179] degrees, got 180"},
       {"bench --fov nan", "", "--fov must be in (0, 179] degrees, got nan"},
       {"bench --fov -1", "", "--fov must be in (0, 179] degrees, got -1"},
+      {"bench --flight-fps 0.5", "", "--flight-fps must be 0 or in 1..1000, got 0.5"},
+      {"bench --flight-fps -60", "", "--flight-fps must be 0 or in 1..1000, got -60"},
+      {"bench --flight-fps nan", "", "--flight-fps must be 0 or in 1..1000, got nan"},
+      {"bench --flight-fps 5000", "", "--flight-fps must be 0 or in 1..1000, got 5000"},
       {"bench --sun 0,95", "", "sun elevation 95 is outside [-90, 90] degrees"},
       {"bench --sun nan,nan", "", "'nan' is not a finite number"},
       {"bench --preset nosuch", "", "unknown planet preset 'nosuch'"},
@@ -694,6 +698,42 @@ TEST(Cli, BenchReportsEveryFieldWithConsistentTimesAndCompareRatios) {
   EXPECT_EQ(lineCount(table), 1u + 4u * 3u);
   EXPECT_EQ(table.substr(0, table.find(',')), "mode");
   EXPECT_NE(table.find("pass_heights_ms"), std::string::npos);
+}
+
+// The lead-in frame makes a timed frame do what a frame of a real-time flight does: over a
+// low traverse, timed frames 5 s of flight apart move most patch levels (rebuilt),
+// but after a lead-in 1/60 s before, a frame rebuilds only the levels that one frame's
+// movement (7 m) recentred.
+TEST(Cli, BenchLeadInFramesRebuildWhatARealTimeFrameRebuilds) {
+  const std::filesystem::path path = tempDir() / "traverse_path.txt";
+  std::ofstream(path) << "0 33.8 -90 300 60 -20\n10 33.82 -89.96 300 60 -20\n";  // ~400 m/s
+  auto rebuilt = [&](const std::string& flight) {
+    const std::filesystem::path json = tempDir() / (flight.empty() ? "lead_in.json" : "no_lead_in.json");
+    CommandResult run = planet("bench --size 64x36 --frames 3 --warmup 0 --path " + path.string() + flight +
+                               " --json " + json.string());
+    if (noDevice(run)) return std::vector<uint32_t>{};
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find(flight.empty() ? "follows an untimed one 1/60 s of flight before it" : "no lead-in frames"),
+              std::string::npos)
+        << run.out;
+    const nlohmann::json j = nlohmann::json::parse(readFile(json));
+    EXPECT_EQ(j["flight_fps"].get<double>(), flight.empty() ? 60.0 : 0.0);
+    std::vector<uint32_t> levels;
+    for (const auto& f : j["per_frame"]) levels.push_back(f["patch_levels_rebuilt"].get<uint32_t>());
+    return levels;
+  };
+  const std::vector<uint32_t> apart = rebuilt(" --flight-fps 0");
+  if (apart.empty()) GTEST_SKIP() << "no Vulkan device on this machine";
+  const std::vector<uint32_t> realTime = rebuilt("");
+  ASSERT_EQ(apart.size(), 3u);
+  ASSERT_EQ(realTime.size(), 3u);
+  // The first frame of either run builds every level from nothing; after it the frames apart
+  // rebuild the levels whose recentre step is under 2 km (measured: 2 and 5 of the six), the
+  // real-time ones at most the finest.
+  for (size_t i = 1; i < 3; ++i) {
+    EXPECT_GE(apart[i], 2u) << "frame " << i;
+    EXPECT_LE(realTime[i], 1u) << "frame " << i;
+  }
 }
 
 TEST(Cli, BenchPlotIsAPngOrAOneLineErrorAboutMatplotlib) {

@@ -22,6 +22,7 @@ struct FrameBenchCommand {
   int64_t frames = 120;
   int64_t warmup = 5;
   double fovDeg = 60.0;
+  double flightFps = 60.0;
   std::string sun;
   std::string path;
   std::string json;
@@ -68,6 +69,9 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   if (cmd.warmup < 0 || cmd.warmup > kBenchMaxWarmup)
     throw UsageError(fmt::format("--warmup must be in 0..{}, got {}", kBenchMaxWarmup, cmd.warmup));
   checkFieldOfView(cmd.fovDeg);
+  if (!(cmd.flightFps == 0.0 || (cmd.flightFps >= 1.0 && cmd.flightFps <= kBenchMaxFlightFps)))
+    throw UsageError(fmt::format("--flight-fps must be 0 or in 1..{}, got {}", kBenchMaxFlightFps, cmd.flightFps));
+  o.flightFps = cmd.flightFps;
   o.frames = uint32_t(cmd.frames);
   o.warmup = uint32_t(cmd.warmup);
   o.fovYDeg = cmd.fovDeg;
@@ -130,6 +134,10 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
   add(bench.add_option("--warmup", cmd->warmup, "Untimed frames before them, spread over the path the same way")
           ->capture_default_str());
   add(bench.add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str());
+  add(bench.add_option("--flight-fps", cmd->flightFps,
+                       "Time each frame after an untimed one 1/RATE s of flight earlier, as in a real-time flight at "
+                       "RATE frames per second (0: the timed frames only, each 1/(frames-1) of the path apart)")
+          ->capture_default_str());
   add(bench.add_option("--sun", cmd->sun,
                        "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));
   addFile(bench.add_option("--path", cmd->path,

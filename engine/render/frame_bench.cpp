@@ -46,6 +46,7 @@ FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResu
   f.cpuHeightsMs = result.terrain.cpuHeightsMs;
   f.triangles = result.terrain.triangles;
   f.verticesEvaluated = result.terrain.verticesEvaluated;
+  f.patchLevelsRebuilt = result.terrain.patchLevelsRebuilt;
   f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
   return f;
 }
@@ -75,6 +76,10 @@ void summarizeRun(ModeRun& run) {
     run.minMetresPerVertexAtNadir = std::min(run.minMetresPerVertexAtNadir, f.metresPerVertexAtNadir);
   run.trianglesMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.triangles; }).median;
   run.verticesEvaluatedMedian = summaryOf(run.frames, [](const FrameRecord& f) { return f.verticesEvaluated; }).median;
+  for (const FrameRecord& f : run.frames) {
+    run.patchLevelsRebuiltMean += double(f.patchLevelsRebuilt) / double(run.frames.size());
+    run.patchLevelsRebuiltMax = std::max(run.patchLevelsRebuiltMax, f.patchLevelsRebuilt);
+  }
 }
 
 // Every mode flies the path at once, frame by frame in turn, so that a machine that slows down
@@ -103,11 +108,18 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     for (uint32_t i = 0; i < count; ++i) {
       // Warm-up frames at the middles of `count` equal parts of the path: none repeats the first
       // timed frame's pose, which would let that frame skip its height pass.
-      const double timeS =
+      double timeS =
           warmup ? path.startS() + path.durationS() * (double(i) + 0.5) / double(count) : frameTimeS(path, i, count);
+      // The lead-in frame, a real-time frame before: at the path's start the pair moves on by
+      // one frame instead (a lead-in at the same pose would let the timed frame skip its work).
+      const bool leadIn = !warmup && options.flightFps > 0.0;
+      const double frameS = leadIn ? 1.0 / options.flightFps : 0.0;
+      if (leadIn && timeS - frameS < path.startS()) timeS = std::min(path.startS() + frameS, path.endS());
+      const CameraPose leadPose = cameraPoseAt(sampleCameraPath(path, std::max(timeS - frameS, path.startS())), planet);
       const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
       for (size_t m = 0; m < modes.size(); ++m) {
         if (progress) progress(modes[m].name, warmup, i, count, lastMs[m]);
+        if (leadIn) renderers[m]->render(leadPose, options.sun);
         const auto start = std::chrono::steady_clock::now();
         RenderResult result = renderers[m]->render(pose, options.sun);
         lastMs[m] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -168,6 +180,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["patches"] = options.patches;
   j["frames"] = options.frames;
   j["warmup"] = options.warmup;
+  j["flight_fps"] = options.flightFps;
   j["preset"] = preset;
   j["preset_hash"] = fmt::format("{:016x}", presetHash);
   j["path"] = {{"source", pathSource}, {"keys", pathKeys}, {"duration_s", pathDurationS}};
@@ -183,6 +196,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["nadir_m_per_vertex_min"] = main.minMetresPerVertexAtNadir;
   j["triangles_median"] = uint64_t(std::llround(main.trianglesMedian));
   j["vertices_evaluated_median"] = uint64_t(std::llround(main.verticesEvaluatedMedian));
+  j["patch_levels_rebuilt"] = {{"mean", main.patchLevelsRebuiltMean}, {"max", main.patchLevelsRebuiltMax}};
   j["compare"] = nlohmann::json::object();
   j["modes"] = nlohmann::json::object();
   for (const ModeRun& run : runs) {
@@ -215,6 +229,7 @@ nlohmann::json FrameBenchReport::toJson() const {
                               {"passes", passes},
                               {"triangles", f.triangles},
                               {"vertices_evaluated", f.verticesEvaluated},
+                              {"patch_levels_rebuilt", f.patchLevelsRebuilt},
                               {"m_per_vertex_nadir", f.metresPerVertexAtNadir}});
   }
   return j;
@@ -228,14 +243,15 @@ std::string FrameBenchReport::csv() const {
   std::string out =
       "mode,frame,time_s,lat_deg,lon_deg,altitude_m,height_m,frame_ms,gpu_ms,cpu_ms,terrain_ms,cpu_heights_ms";
   for (const std::string& name : passes) out += ",pass_" + name + "_ms";
-  out += ",triangles,vertices_evaluated,m_per_vertex_nadir\n";
+  out += ",triangles,vertices_evaluated,patch_levels_rebuilt,m_per_vertex_nadir\n";
   for (const ModeRun& run : runs)
     for (const FrameRecord& f : run.frames) {
       out += fmt::format("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.mode.name, f.index, f.pathTimeS,
                          f.camera.latitudeDeg, f.camera.longitudeDeg, f.camera.altitudeM, f.heightAboveGroundM,
                          f.frameMs, f.gpuMs, f.cpuMs(), f.terrainMs(), f.cpuHeightsMs);
       for (const std::string& name : passes) out += fmt::format(",{:.4f}", f.passMs(name));
-      out += fmt::format(",{},{},{}\n", f.triangles, f.verticesEvaluated, f.metresPerVertexAtNadir);
+      out += fmt::format(",{},{},{},{}\n", f.triangles, f.verticesEvaluated, f.patchLevelsRebuilt,
+                         f.metresPerVertexAtNadir);
     }
   return out;
 }
@@ -243,9 +259,13 @@ std::string FrameBenchReport::csv() const {
 std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
-  out += fmt::format("preset: {} (hash {:016x}), {}x{}{}, path: {} ({} keys, {} s), {} frames after {} warm-up\n\n",
+  out += fmt::format("preset: {} (hash {:016x}), {}x{}{}, path: {} ({} keys, {} s), {} frames after {} warm-up\n",
                      preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
                      pathSource, pathKeys, pathDurationS, options.frames, options.warmup);
+  out += options.flightFps > 0.0
+             ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n\n",
+                           options.flightFps, options.flightFps)
+             : std::string("no lead-in frames: each timed frame follows the timed one before it\n\n");
   out += fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9}\n", "ms (mode " + main.mode.name + ")", "median", "p95", "p99",
                      "max");
   auto row = [&](const std::string& name, const Summary& s) {
@@ -260,6 +280,9 @@ std::string FrameBenchReport::table() const {
   out += fmt::format("metres per vertex at the nadir: {:.4g} at the lowest point\n", main.minMetresPerVertexAtNadir);
   out += fmt::format("triangles drawn (median): {:.0f}, vertices evaluated (median): {:.0f}\n", main.trianglesMedian,
                      main.verticesEvaluatedMedian);
+  if (options.patches)
+    out += fmt::format("patch levels rebuilt per frame: mean {:.2f}, max {}\n", main.patchLevelsRebuiltMean,
+                       main.patchLevelsRebuiltMax);
   out += fmt::format("terrain time = {}\n", terrainTimeDefinition());
   if (runs.size() > 1) {
     out += fmt::format("\ncompare: median terrain time over {}'s ({:.2f} ms)\n", main.mode.name, main.terrainMs.median);
@@ -276,6 +299,9 @@ FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& pl
                                const FrameBenchProgress& progress) {
   if (options.frames < 1 || options.frames > kBenchMaxFrames)
     throw Error(fmt::format("frames must be in 1..{}, got {}", kBenchMaxFrames, options.frames));
+  if (!(options.flightFps == 0.0 || (options.flightFps >= 1.0 && options.flightFps <= kBenchMaxFlightFps)))
+    throw Error(fmt::format("the flight rate must be 0 or in 1..{} frames per second, got {}", kBenchMaxFlightFps,
+                            options.flightFps));
   if (options.warmup > kBenchMaxWarmup)
     throw Error(fmt::format("warm-up frames must be in 0..{}, got {}", kBenchMaxWarmup, options.warmup));
   validateCameraPath(path, pathSource);

@@ -40,7 +40,15 @@ struct FrameBenchOptions {
   SunPose sun;
   bool compare = false;  // also run every other BenchMode
   bool patches = true;   // patch textures (off: vertex normals only, like planet render --no-patches)
+  // The rate of the flight the timed frames sample. Each timed frame follows an untimed lead-in
+  // frame 1 / flightFps s of flight earlier, so that it does the work a frame of a real-time
+  // flight at that rate does: what depends on the previous frame (the patch levels that moved,
+  // the heights) is redone for one frame's movement, not for the path time between two timed
+  // frames (1.6 s on the default path with 40 frames: every patch level moved). 0: no lead-in,
+  // each timed frame follows the one before it.
+  double flightFps = 60.0;
 };
+inline constexpr double kBenchMaxFlightFps = 1000.0;
 
 // One way to produce the terrain: the default (compute heights, octave limits on) and those
 // it is compared with.
@@ -74,6 +82,7 @@ struct FrameRecord {
   double cpuHeightsMs = 0.0;          // cpu mode: the threaded CPU evaluation (inside frameMs, outside gpuMs)
   uint64_t triangles = 0;
   uint32_t verticesEvaluated = 0;
+  uint32_t patchLevelsRebuilt = 0;
   double metresPerVertexAtNadir = 0.0;
 
   double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
@@ -91,6 +100,8 @@ struct ModeRun {
   double minMetresPerVertexAtNadir = 0.0;
   double trianglesMedian = 0.0;
   double verticesEvaluatedMedian = 0.0;
+  double patchLevelsRebuiltMean = 0.0;
+  uint32_t patchLevelsRebuiltMax = 0;
 };
 
 struct FrameBenchReport {
