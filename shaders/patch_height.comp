@@ -1,8 +1,8 @@
 #version 450
-// Patch textures, pass 1 (engine/render/patch_textures.h): terrain heights of one level plus a
-// one-texel border, through the rebased octave tables the CPU built in double at each tile's
+// Patch textures, pass 1 (engine/render/patch_textures.h): terrain heights of one region of a
+// level plus a one-texel border, through the rebased octave tables the CPU built in double at each tile's
 // anchor (DESIGN.md, "Earth-scale precision"; shared/patch_params.h). Height-buffer texel
-// (i, j) is level texel (i − 1, j − 1); the border feeds the normal pass's central differences.
+// (i, j) is region texel (i − 1, j − 1); the border feeds the normal pass's central differences.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/patch_params.h"
@@ -55,10 +55,11 @@ void main() {
   uvec2 group = (gl_WorkGroupID.xy + uvec2(level.firstGroupA, level.firstGroupB)) * kPatchWorkgroupSize;
   ivec2 local = ivec2(group + gl_LocalInvocationID.xy);
   ivec2 id = local - ivec2(level.shiftA, level.shiftB);
-  int side = int(level.resolution) + 2;
+  int sideA = int(level.regionWidth) + 2;
+  int sideB = int(level.regionHeight) + 2;
   // No early return: lavapipe turns loads with uniform addresses into one scalar load only
   // outside control flow, so the layer parameters below stay cheap; the store is guarded.
-  bool inside = id.x >= 0 && id.y >= 0 && id.x < side && id.y < side;
+  bool inside = id.x >= 0 && id.y >= 0 && id.x < sideA && id.y < sideB;
   uvec2 tileXY = group / level.tileSize;
   uint tile = tileXY.y * level.tilesPerSide + tileXY.x;
   int size = int(level.tileSize);
@@ -78,5 +79,5 @@ void main() {
   if (kSpecLayerCount > 5u) sum += layerHeight(5u, kSpecType5, kSpecHash5, offset);
   if (kSpecLayerCount > 6u) sum += layerHeight(6u, kSpecType6, kSpecHash6, offset);
   if (kSpecLayerCount > 7u) sum += layerHeight(7u, kSpecType7, kSpecHash7, offset);
-  if (inside) heights[id.y * side + id.x] = level.heightScale * sum;
+  if (inside) heights[id.y * sideA + id.x] = level.heightScale * sum;
 }

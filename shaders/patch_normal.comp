@@ -1,7 +1,8 @@
 #version 450
 // Patch textures, pass 2 (engine/render/patch_textures.h): the unit outward normal of every
-// texel of one level from central differences of the surface points P = (R + h)·p of its four
-// neighbours, written with the height as (normal, height) into the level's array layer.
+// texel of one region of a level from central differences of the surface points P = (R + h)·p
+// of its four neighbours, written with the height as (normal, height) into the level's array
+// layer, where its face index puts it (toroidal storage, shared/patch_params.h).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/patch_params.h"
@@ -17,8 +18,8 @@ layout(set = 0, binding = kPatchBindingImage, rgba32f) writeonly uniform image2D
 
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;
-  if (id.x >= level.resolution || id.y >= level.resolution) return;
-  uint side = level.resolution + 2u;
+  if (id.x >= level.regionWidth || id.y >= level.regionHeight) return;
+  uint side = level.regionWidth + 2u;
   uint centre = (id.y + 1u) * side + id.x + 1u;
   float h = heights[centre];
   float hl = heights[centre - 1u];
@@ -45,5 +46,6 @@ void main() {
   precise vec3 alongB = (r + hu) * (du - dd) + (hu - hd) * (c + dd);
   // A × B = N, so the cross product of the +a and +b tangents points outward.
   vec3 normal = normalize(cross(alongA, alongB));
-  imageStore(patches, ivec3(int(id.x), int(id.y), int(level.imageLayer)), vec4(normal, h));
+  uvec2 stored = (id + uvec2(level.storeOffsetA, level.storeOffsetB)) % level.resolution;
+  imageStore(patches, ivec3(ivec2(stored), int(level.imageLayer)), vec4(normal, h));
 }

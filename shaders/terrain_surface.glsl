@@ -40,7 +40,10 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
       float weight = clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
       if (j == first) weight *= 1.0f - fraction;
       if (weight <= 0.0f) continue;
-      vec4 texel = textureLod(patches, vec3(uv, level.x), 0.0f);
+      // Toroidal storage: the level's texel (0, 0) sits at its wrap offset; the sampler repeats.
+      vec4 wrap = frame.patchWrap[j >> 1u];
+      vec2 stored = uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw);
+      vec4 texel = textureLod(patches, vec3(stored, level.x), 0.0f);
       accumulatedNormal += remaining * weight * (mat3(frame.planetToLocal) * texel.xyz);
       accumulatedHeight += remaining * weight * texel.w;
       remaining *= 1.0f - weight;

@@ -83,8 +83,11 @@ std::vector<float> readBack(vk::Context& context, const PatchTextures& patches) 
   return texels;
 }
 
-glm::vec4 texelOf(const std::vector<float>& texels, uint32_t resolution, uint32_t layer, int64_t x, int64_t y) {
-  const size_t i = ((size_t(layer) * resolution + size_t(y)) * resolution + size_t(x)) * 4;
+// Level texel (x, y) of `level`, where toroidal storage keeps it (its face index mod resolution).
+glm::vec4 texelOf(const std::vector<float>& texels, uint32_t resolution, const PatchLevel& level, int64_t x,
+                  int64_t y) {
+  const glm::uvec2 stored = PatchTextures::storedTexel(level, resolution, x, y);
+  const size_t i = ((size_t(level.layer) * resolution + stored.y) * resolution + stored.x) * 4;
   return {texels[i], texels[i + 1], texels[i + 2], texels[i + 3]};
 }
 
@@ -155,7 +158,7 @@ TEST_F(PatchTexturesGpu, HeightsAndNormalsMatchTheDoubleReferenceOnEveryLevel) {
     for (int i = 0; i < 500; ++i) samples.push_back({random() % settings.resolution, random() % settings.resolution});
     double maxAngle = 0.0;
     for (const auto& [x, y] : samples) {
-      const glm::vec4 gpu = texelOf(texels, settings.resolution, level.layer, x, y);
+      const glm::vec4 gpu = texelOf(texels, settings.resolution, level, x, y);
       const ReferenceTexel ref = referenceTexel(planet, layout, level, double(x), double(y));
       const double heightError = std::abs(double(gpu.w) - ref.heightM);
       const double angle = angleBetween(glm::dvec3(gpu), ref.normal);
@@ -194,7 +197,7 @@ TEST_F(PatchTexturesGpu, MoonCraterHeightsMatchTheDoubleReferenceOnEveryLevel) {
       const glm::dvec2 ab = patchTexelCoordinates(level, double(x), double(y));
       const double reference = terrainHeightM(planet, cubeFaceDirection(layout.face, ab.x, ab.y),
                                               patchTexelSpacingM(layout, level, planet.radiusM));
-      const double error = std::abs(double(texelOf(texels, settings.resolution, level.layer, x, y).w) - reference);
+      const double error = std::abs(double(texelOf(texels, settings.resolution, level, x, y).w) - reference);
       EXPECT_LE(error, kHeightToleranceM) << "exponent " << level.exponent << " texel " << x << "," << y;
       maxHeightError = std::max(maxHeightError, error);
     }
@@ -225,38 +228,65 @@ TEST_F(PatchTexturesGpu, UpdatesRebuildOnlyWhatMoved) {
   const std::vector<float> unchanged = readBack(context(), patches);
   EXPECT_EQ(std::memcmp(first.data(), unchanged.data(), first.size() * sizeof(float)), 0);
 
-  // (4) One recentre step of the finest level along +a: that level moves by `step` texels and
-  // its texels that overlap the old ones sample the same planet points.
+  // (4) One recentre step of the finest level along +a and -b (diagonally): the levels that
+  // moved keep the texels they still cover where they are stored (bit for bit) and compute only
+  // the two strips they newly cover; the result matches a level built whole at the new place.
   const int64_t step = res / settings.recentreDivisor;
   const PatchLevel& finest = layout.levels[0];
   const glm::dvec2 ab = cubeFaceCoordinates(layout.face, camera);
+  const double finestTexel = std::ldexp(1.0, finest.exponent);
   const glm::dvec3 movedCamera =
-      cubeFaceDirection(layout.face, ab.x + double(step) * std::ldexp(1.0, finest.exponent), ab.y);
+      cubeFaceDirection(layout.face, ab.x + double(step) * finestTexel, ab.y - double(step) * finestTexel);
   const PatchLayout moved = choosePatchLayout(settings, radius, movedCamera, pixel);
   ASSERT_EQ(moved.face, layout.face);
   ASSERT_EQ(moved.levels[0].exponent, finest.exponent);
   ASSERT_EQ(moved.levels[0].originA, finest.originA + step);
-  ASSERT_EQ(moved.levels[0].originB, finest.originB);
+  ASSERT_EQ(moved.levels[0].originB, finest.originB - step);
   uint32_t movedLevels = 0;
-  for (size_t j = 0; j < layout.levels.size(); ++j)
-    movedLevels += moved.levels[j].originA != layout.levels[j].originA ? 1 : 0;
+  uint64_t newTexels = 0;
+  for (size_t j = 0; j < layout.levels.size(); ++j) {
+    const int64_t dA = std::abs(moved.levels[j].originA - layout.levels[j].originA);
+    const int64_t dB = std::abs(moved.levels[j].originB - layout.levels[j].originB);
+    movedLevels += dA != 0 || dB != 0 ? 1 : 0;
+    newTexels += uint64_t(res * res - (res - dA) * (res - dB));
+  }
   EXPECT_EQ(runUpdate(context(), patches, moved), movedLevels);
+  EXPECT_EQ(patches.lastUpdateTexels(), newTexels) << "only the new strips are computed";
+  // One diagonal step of a level's own recentre size or of the finest's: under a quarter of it.
+  EXPECT_LE(newTexels, uint64_t(movedLevels) * res * res / 4);
   const std::vector<float> after = readBack(context(), patches);
+  // The texels both windows cover were not written again.
+  const PatchLevel& movedFinest = moved.levels[0];
+  for (int64_t y = 0; y < res; ++y)
+    for (int64_t x = 0; x < res; ++x) {
+      const int64_t oldX = x + step, oldY = y - step;  // the same face index in the old window
+      if (oldX >= res || oldY < 0) continue;
+      ASSERT_EQ(texelOf(after, res, movedFinest, x, y), texelOf(first, res, finest, oldX, oldY))
+          << "texel " << x << "," << y;
+    }
+  // Against the same layout built whole by a second set of patch textures.
+  PatchTextures whole(context(), data, settings);
+  ASSERT_EQ(runUpdate(context(), whole, moved), settings.levelCount);
+  const std::vector<float> wholeTexels = readBack(context(), whole);
   double maxHeightDifference = 0.0, maxAngle = 0.0;
+  size_t identical = 0;
   for (int64_t y = 0; y < res; ++y) {
-    for (int64_t x = 0; x + step < res; ++x) {
-      const glm::vec4 before = texelOf(first, res, finest.layer, x + step, y);
-      const glm::vec4 now = texelOf(after, res, finest.layer, x, y);
-      maxHeightDifference = std::max(maxHeightDifference, std::abs(double(now.w) - double(before.w)));
-      maxAngle = std::max(maxAngle, angleBetween(glm::dvec3(now), glm::dvec3(before)));
+    for (int64_t x = 0; x < res; ++x) {
+      const glm::vec4 incremental = texelOf(after, res, movedFinest, x, y);
+      const glm::vec4 built = texelOf(wholeTexels, res, movedFinest, x, y);
+      identical += incremental == built ? 1 : 0;
+      maxHeightDifference = std::max(maxHeightDifference, std::abs(double(incremental.w) - double(built.w)));
+      maxAngle = std::max(maxAngle, angleBetween(glm::dvec3(incremental), glm::dvec3(built)));
     }
   }
+  // The kept texels carry the octave budget of the old centre (an ulp at most, see above).
   EXPECT_LE(maxHeightDifference, kMovedToleranceM);
   EXPECT_LE(maxAngle, kMovedToleranceM / patchTexelSpacingM(moved, moved.levels[0], radius));
-  std::printf("[ measured ] after one recentre step: max height difference %.3g m, max normal angle %.3g rad\n",
-              maxHeightDifference, maxAngle);
+  std::printf("[ measured ] after one diagonal recentre step: %zu of %lld texels bit-identical to a whole build, "
+              "max height difference %.3g m, max normal angle %.3g rad\n",
+              identical, (long long)(res * res), maxHeightDifference, maxAngle);
   for (size_t j = 0; j < layout.levels.size(); ++j) {
-    if (moved.levels[j].originA == layout.levels[j].originA) {
+    if (moved.levels[j].originA == layout.levels[j].originA && moved.levels[j].originB == layout.levels[j].originB) {
       EXPECT_TRUE(sameLayer(first, after, moved.levels[j].layer)) << "level " << j << " should not change";
     }
   }

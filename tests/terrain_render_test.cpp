@@ -227,6 +227,54 @@ TEST_F(TerrainRender, SameInputsGiveIdenticalImagesAndSeedsChangeThePlanet) {
   EXPECT_LT(psnrRgb(first, renderer.render(camera, {}).image), 30.0);
 }
 
+// The patch levels are stored toroidally: a level that moved by a recentre step computes only
+// the strips it newly covers and the terrain samples it through its wrap offset. A low flight
+// that moves the levels strip by strip must then draw what levels built whole at the end draw.
+TEST_F(TerrainRender, PatchLevelsMovedStripByStripDrawWhatAWholeBuildDraws) {
+  const PlanetDescription planet = resolvePreset("earth");
+  const RenderSettings settings = smallSettings(true);
+  Renderer renderer(context(), planet, settings);
+  const double altitude = renderer.clampToGround({kLat, kLon, -1.0e5}).altitudeM + 30.0;
+  const glm::dvec3 start = directionFromLatLon(kLat, kLon);
+  const uint64_t wholeTexels =
+      uint64_t(settings.terrain.patchSettings.levelCount) * settings.terrain.patchSettings.resolution *
+      settings.terrain.patchSettings.resolution;
+  CameraPose pose;
+  uint32_t stripFrames = 0;
+  // 7 m a frame (the finest level's recentre step here is ~11 m), 12 frames.
+  for (int frame = 0; frame <= 12; ++frame) {
+    const glm::dvec3 p = travelGreatCircle(start, 60.0, 7.0 * frame, planet.radiusM);
+    pose = {latitudeDegOf(p), longitudeDegOf(p), altitude, 60.0, -30.0};
+    renderer.render(pose, {});
+    const TerrainFrameInfo& info = renderer.terrain().frame();
+    if (frame > 0 && info.patchLevelsRebuilt > 0) {
+      EXPECT_LT(info.patchTexelsWritten, wholeTexels / 4) << "frame " << frame << ": only new strips";
+      ++stripFrames;
+    }
+  }
+  EXPECT_GE(stripFrames, 3u) << "the flight should move the finest level several times";
+  const Rgba8Image strips = renderer.render(pose, {}).image;
+  EXPECT_EQ(renderer.terrain().frame().patchTexelsWritten, 0u);
+  renderer.terrain().invalidatePatches();
+  const Rgba8Image whole = renderer.render(pose, {}).image;
+  EXPECT_EQ(renderer.terrain().frame().patchTexelsWritten, wholeTexels);
+  int worst = 0;
+  for (size_t i = 0; i < strips.pixels.size(); ++i) worst = std::max(worst, std::abs(int(strips.pixels[i]) - int(whole.pixels[i])));
+  const double psnr = psnrRgb(strips, whole);
+  std::printf("[ measured ] strip-by-strip vs whole patch levels: PSNR %.1f dB, largest channel difference %d\n", psnr,
+              worst);
+  // The kept texels carry the octave budget of where their level was (an ulp of height).
+  EXPECT_LE(worst, 2);
+  // And a renderer that starts at the end pose: its mesh may be turned differently (it has no
+  // flight behind it), the patch texels are the same points, so the pictures agree closely.
+  // (Where in its layer a level is sampled, the wrap offset, is what the golden images check:
+  // without it they fail.)
+  Renderer fresh(context(), planet, settings);
+  const double freshPsnr = psnrRgb(strips, fresh.render(pose, {}).image);
+  std::printf("[ measured ] after the flight vs a renderer started there: PSNR %.1f dB\n", freshPsnr);
+  EXPECT_GE(freshPsnr, 40.0);
+}
+
 TEST_F(TerrainRender, TwoMetresAboveTheGroundVerticesAreDenserThanHalfAMetre) {
   const PlanetDescription planet = resolvePreset("earth");
   Renderer renderer(context(), planet, smallSettings(false));

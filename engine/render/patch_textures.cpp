@@ -91,17 +91,20 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
     samplerInfo.magFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     samplerInfo.minFilter = samplerInfo.magFilter;
     samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    // Toroidal storage: a level's texels wrap around its layer, and so does filtering across
+    // the seam (the texels either side of it are neighbours on the face). The array layer is
+    // chosen by an integer coordinate, which addressing does not touch.
+    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     samplerInfo.minLod = 0.0f;
     samplerInfo.maxLod = 0.0f;
     VK_CHECK(vkCreateSampler(context_.device, &samplerInfo, nullptr, &sampler_));
 
-    layers_.resize(settings_.levelCount);
+    regions_.resize(size_t(settings_.levelCount) * kRegionsPerLevel);
     contents_.resize(settings_.levelCount);
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    for (LayerResources& layer : layers_) {
+    for (RegionResources& layer : regions_) {
       const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
       for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
         layer.level[slot] = vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload);
@@ -125,7 +128,7 @@ void PatchTextures::release() {
   // The descriptor sets go with their pipelines' pools.
   vk::destroyComputePipeline(context_, normalPipeline_);
   vk::destroyComputePipeline(context_, heightPipeline_);
-  for (LayerResources& layer : layers_) {
+  for (RegionResources& layer : regions_) {
     vk::destroyBuffer(context_, layer.heights);
     for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;) {
       vk::destroyBuffer(context_, layer.shifts[slot]);
@@ -133,7 +136,7 @@ void PatchTextures::release() {
       vk::destroyBuffer(context_, layer.level[slot]);
     }
   }
-  layers_.clear();
+  regions_.clear();
   if (sampler_) vkDestroySampler(context_.device, sampler_, nullptr);
   sampler_ = VK_NULL_HANDLE;
   vk::destroyImage(context_, image_);
@@ -143,7 +146,7 @@ void PatchTextures::createPipelines() {
   vk::destroyComputePipeline(context_, normalPipeline_);
   vk::destroyComputePipeline(context_, heightPipeline_);
   specialization_ = layerSpecialization(data_.planet());
-  const uint32_t sets = settings_.levelCount * vk::kFramesInFlight;
+  const uint32_t sets = uint32_t(regions_.size()) * vk::kFramesInFlight;
   // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer); the
   // specialization holds the types, so a change of variant also shows as a change of it.
   const std::span<const uint32_t> height = hasCraterLayer(data_.planet())
@@ -152,7 +155,7 @@ void PatchTextures::createPipelines() {
   heightPipeline_ = vk::createComputePipeline(context_, height, kBindings, 0, specialization_, sets);
   normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
   const VkDescriptorType buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  for (LayerResources& layer : layers_) {
+  for (RegionResources& layer : regions_) {
     for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
       for (const vk::ComputePipeline* pipeline : {&heightPipeline_, &normalPipeline_}) {
         VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
@@ -174,8 +177,39 @@ void PatchTextures::invalidate() {
   for (LayerContent& content : contents_) content.valid = false;
 }
 
-void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources,
-                               uint32_t slot) {
+glm::uvec2 PatchTextures::storedTexel(const PatchLevel& level, uint32_t resolution, int64_t x, int64_t y) {
+  const int64_t res = resolution;
+  const int64_t a = level.originA + x, b = level.originB + y;
+  return {uint32_t(a - floorDiv(a, res) * res), uint32_t(b - floorDiv(b, res) * res)};
+}
+
+glm::vec2 PatchTextures::storageOffset(const PatchLevel& level, uint32_t resolution) {
+  const glm::uvec2 first = storedTexel(level, resolution, 0, 0);
+  return glm::vec2(first) / float(resolution);  // a power of two over a power of two or an exact ratio
+}
+
+std::vector<PatchTextures::Region> PatchTextures::staleRegions(int face, const PatchLevel& level) const {
+  const int64_t res = settings_.resolution;
+  const LayerContent& held = contents_[level.layer];
+  const Region whole{level.originA, level.originB, uint32_t(res), uint32_t(res)};
+  if (!held.valid || held.face != face || held.exponent != level.exponent) return {whole};
+  const int64_t dA = level.originA - held.originA, dB = level.originB - held.originB;
+  if (dA == 0 && dB == 0) return {};
+  if (std::abs(dA) >= res || std::abs(dB) >= res) return {whole};
+  // The columns the old window did not cover (all rows), then the rows it did not cover within
+  // the columns it did: together exactly the new window minus the old.
+  std::vector<Region> regions;
+  if (dA != 0)
+    regions.push_back({dA > 0 ? held.originA + res : level.originA, level.originB, uint32_t(std::abs(dA)),
+                       uint32_t(res)});
+  if (dB != 0)
+    regions.push_back({std::max(level.originA, held.originA), dB > 0 ? held.originB + res : level.originB,
+                       uint32_t(res - std::abs(dA)), uint32_t(std::abs(dB))});
+  return regions;
+}
+
+void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& level, const Region& region,
+                                RegionResources& resources, uint32_t slot) {
   const PlanetDescription& planet = data_.planet();
   const CubeFace face = cubeFace(layout.face);
   const double texel = std::ldexp(1.0, level.exponent);
@@ -189,22 +223,29 @@ void PatchTextures::writeLevel(const PatchLayout& layout, const PatchLevel& leve
   params.baseHeightM = float(planet.baseHeightM);
   params.heightScale = float(planet.heightScale);
   // Height-buffer column 0 is face index originA − 1; tiles start at multiples of the tile size.
-  const int64_t firstA = level.originA - 1, firstB = level.originB - 1;
+  const int64_t firstA = region.originA - 1, firstB = region.originB - 1;
   const int64_t tileA = floorDiv(firstA, size), tileB = floorDiv(firstB, size);
   params.shiftA = int32_t(firstA - tileA * size);
   params.shiftB = int32_t(firstB - tileB * size);
   params.tileSize = tileSize_;
-  const int64_t span = int64_t(layout.resolution) + 2;
-  const uint32_t tilesA = uint32_t((params.shiftA + span + size - 1) / size);
-  const uint32_t tilesB = uint32_t((params.shiftB + span + size - 1) / size);
+  const int64_t spanA = int64_t(region.width) + 2, spanB = int64_t(region.height) + 2;
+  const uint32_t tilesA = uint32_t((params.shiftA + spanA + size - 1) / size);
+  const uint32_t tilesB = uint32_t((params.shiftB + spanB + size - 1) / size);
   params.tilesPerSide = std::max(tilesA, tilesB);
   params.resolution = layout.resolution;
+  params.regionWidth = region.width;
+  params.regionHeight = region.height;
+  const int64_t res = layout.resolution;
+  params.storeOffsetA = uint32_t(region.originA - floorDiv(region.originA, res) * res);
+  params.storeOffsetB = uint32_t(region.originB - floorDiv(region.originB, res) * res);
   params.layerCount = uint32_t(planet.layers.size());
   params.imageLayer = level.layer;
   params.firstGroupA = uint32_t(params.shiftA) / gpu::kPatchWorkgroupSize;
   params.firstGroupB = uint32_t(params.shiftB) / gpu::kPatchWorkgroupSize;
-  resources.heightGroupsA = groupsFor(uint32_t(params.shiftA + span)) - params.firstGroupA;
-  resources.heightGroupsB = groupsFor(uint32_t(params.shiftB + span)) - params.firstGroupB;
+  resources.heightGroupsA = groupsFor(uint32_t(params.shiftA + spanA)) - params.firstGroupA;
+  resources.heightGroupsB = groupsFor(uint32_t(params.shiftB + spanB)) - params.firstGroupB;
+  resources.normalGroupsA = groupsFor(region.width);
+  resources.normalGroupsB = groupsFor(region.height);
   const double spacingM = patchTexelSpacingM(layout, level, planet.radiusM);
   for (size_t l = 0; l < planet.layers.size(); ++l) {
     const OctaveBudget budget = octaveBudget(planet.layers[l], spacingM);
@@ -264,17 +305,25 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, u
     invalidate();
   }
 
-  std::vector<const PatchLevel*> stale;
+  struct Work {
+    const PatchLevel* level;
+    Region region;
+    RegionResources* resources;
+  };
+  std::vector<Work> work;
+  uint32_t levelsTouched = 0;
+  lastUpdateTexels_ = 0;
   for (const PatchLevel& level : layout.levels) {
-    const LayerContent& held = contents_[level.layer];
-    if (held.valid && held.face == layout.face && held.exponent == level.exponent && held.originA == level.originA &&
-        held.originB == level.originB)
-      continue;
-    stale.push_back(&level);
+    const std::vector<Region> regions = staleRegions(layout.face, level);
+    levelsTouched += regions.empty() ? 0 : 1;
+    for (size_t r = 0; r < regions.size(); ++r) {
+      work.push_back({&level, regions[r], &regions_[size_t(level.layer) * kRegionsPerLevel + r]});
+      lastUpdateTexels_ += uint64_t(regions[r].width) * regions[r].height;
+    }
   }
-  if (stale.empty()) return 0;
+  if (work.empty()) return 0;
 
-  for (const PatchLevel* level : stale) writeLevel(layout, *level, layers_[level->layer], slot);
+  for (const Work& w : work) writeRegion(layout, *w.level, w.region, *w.resources, slot);
 
   // Earlier frames' fragment shaders may still sample these layers and an earlier update's
   // passes used the height buffers: both finish before the new writes (write-after-read).
@@ -282,29 +331,27 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, u
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.pipeline);
-  for (const PatchLevel* level : stale) {
-    const LayerResources& resources = layers_[level->layer];
+  for (const Work& w : work) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.layout, 0, 1,
-                            &resources.heightSet[slot], 0, nullptr);
-    vkCmdDispatch(cmd, resources.heightGroupsA, resources.heightGroupsB, 1);
+                            &w.resources->heightSet[slot], 0, nullptr);
+    vkCmdDispatch(cmd, w.resources->heightGroupsA, w.resources->heightGroupsB, 1);
   }
   // The normal pass reads the heights (with their border) that the height pass wrote.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  const uint32_t normalGroups = groupsFor(settings_.resolution);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.pipeline);
-  for (const PatchLevel* level : stale) {
+  for (const Work& w : work) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.layout, 0, 1,
-                            &layers_[level->layer].normalSet[slot], 0, nullptr);
-    vkCmdDispatch(cmd, normalGroups, normalGroups, 1);
+                            &w.resources->normalSet[slot], 0, nullptr);
+    vkCmdDispatch(cmd, w.resources->normalGroupsA, w.resources->normalGroupsB, 1);
   }
   // The terrain's fragment shader samples the new texels.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
-  for (const PatchLevel* level : stale)
-    contents_[level->layer] = {true, layout.face, level->exponent, level->originA, level->originB};
-  return uint32_t(stale.size());
+  for (const PatchLevel& level : layout.levels)
+    contents_[level.layer] = {true, layout.face, level.exponent, level.originA, level.originB};
+  return levelsTouched;
 }
 
 }  // namespace planet

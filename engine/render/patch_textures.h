@@ -9,16 +9,25 @@
 // tile's anchor. So a texel's value depends only on where it lies on the face and on its level's
 // octave budget, octaveBudget(layer, patchTexelSpacingM(...)): a level that moves by whole
 // recentre steps reproduces the texels it keeps (up to the budget's change with the level's
-// centre, at most an ulp of the height), and a level is recomputed only when its (face,
-// exponent, origin) changed.
+// centre, at most an ulp of the height).
 //
-// Two compute passes per rebuilt level: patch_height.comp evaluates heights for the level plus a
-// one-texel border into a per-layer buffer; patch_normal.comp takes central differences of the
-// surface points (R + h)·p of the four neighbours and writes (normal, height).
+// Storage is toroidal (shared/patch_params.h): a texel lives at its face index mod resolution in
+// its layer, so a level that moved by fewer texels than its resolution, on the same face and at
+// the same exponent, keeps every texel it still covers in place and computes only the one or two
+// strips it newly covers (one recentre step: an eighth of the level). A level is rebuilt whole
+// when its face or exponent changed, it moved by a whole level or more, or after invalidate().
+// Samplers wrap (VK_SAMPLER_ADDRESS_MODE_REPEAT) and the terrain adds each level's storage
+// offset (FrameUniforms::patchWrap).
+//
+// Two compute passes per region written: patch_height.comp evaluates heights for the region plus
+// a one-texel border into a per-region buffer; patch_normal.comp takes central differences of
+// the surface points (R + h)·p of the four neighbours and writes (normal, height).
 #pragma once
 
 #include <cstdint>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include <vulkan/vulkan.h>
 
@@ -51,9 +60,10 @@ class PatchTextures {
   PatchTextures& operator=(const PatchTextures&) = delete;
 
   // Records into `cmd` the compute work that brings every level of `layout` up to date: a level
-  // is rebuilt when its layer does not already hold exactly (face, exponent, originA, originB)
-  // for this planet, or after invalidate(). Returns how many levels it recorded a rebuild for
-  // (0: nothing recorded, not even a barrier). The rebuilt levels' parameters and octave tables
+  // whose layer does not already hold exactly (face, exponent, originA, originB) for this planet
+  // gets the strips it newly covers (or all of it, see above). Returns how many levels it
+  // recorded work for (0: nothing recorded, not even a barrier); lastUpdateTexels() says how
+  // many texels that work wrote. The rebuilt levels' parameters and octave tables
   // are written now into host-visible buffers owned per layer and frame slot (`slot` <
   // vk::kFramesInFlight), so update() may be called while a command buffer recorded for another
   // slot still executes, but not while one recorded for the same slot does (wait for its fence).
@@ -71,6 +81,15 @@ class PatchTextures {
   // Marks every level stale, e.g. after the planet's parameters changed.
   void invalidate();
 
+  // Texels the last update() wrote (0 when it found nothing to do).
+  uint64_t lastUpdateTexels() const { return lastUpdateTexels_; }
+
+  // Where level texel (x, y) of `level` is stored in its layer: the face index mod resolution.
+  static glm::uvec2 storedTexel(const PatchLevel& level, uint32_t resolution, int64_t x, int64_t y);
+  // The storage offset of a level as the terrain samples it: (originA mod resolution,
+  // originB mod resolution) / resolution, exact in float.
+  static glm::vec2 storageOffset(const PatchLevel& level, uint32_t resolution);
+
   // 2D array of settings().levelCount layers of resolution² texels, format kFormat, always in
   // VK_IMAGE_LAYOUT_GENERAL (between update()s), usage sampled + storage (+ transfer).
   const vk::Image& image() const { return image_; }
@@ -87,23 +106,37 @@ class PatchTextures {
     int64_t originA = 0;
     int64_t originB = 0;
   };
+  // A rectangle of a level's texels by face index: [originA, originA + width) × [originB, ...).
+  struct Region {
+    int64_t originA = 0;
+    int64_t originB = 0;
+    uint32_t width = 0;
+    uint32_t height = 0;
+  };
+  // A level's update writes at most two regions: the strip along a and the one along b.
+  static constexpr uint32_t kRegionsPerLevel = 2;
   // The host-visible buffers and the descriptor sets that point at them, one per frame slot.
-  struct LayerResources {
+  struct RegionResources {
     vk::Buffer level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
     vk::Buffer remainders[vk::kFramesInFlight];  // each tile's octave remainders
     vk::Buffer shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
     vk::Buffer heights;                          // device-local: (resolution + 2)² floats, GPU-written
     VkDescriptorSet heightSet[vk::kFramesInFlight] = {};
     VkDescriptorSet normalSet[vk::kFramesInFlight] = {};
-    uint32_t heightGroupsA = 0;  // the height pass's dispatch for the level last written
+    uint32_t heightGroupsA = 0;  // the height pass's dispatch for the region last written
     uint32_t heightGroupsB = 0;
+    uint32_t normalGroupsA = 0;  // the normal pass's
+    uint32_t normalGroupsB = 0;
   };
 
   void release();
   // (Re)creates both pipelines, the height one specialized for the planet's current layers,
-  // and points each layer's descriptor sets at its resources.
+  // and points each region's descriptor sets at its resources.
   void createPipelines();
-  void writeLevel(const PatchLayout& layout, const PatchLevel& level, LayerResources& resources, uint32_t slot);
+  // The regions of `level` its layer does not hold yet (none when it holds all of it).
+  std::vector<Region> staleRegions(int face, const PatchLevel& level) const;
+  void writeRegion(const PatchLayout& layout, const PatchLevel& level, const Region& region,
+                   RegionResources& resources, uint32_t slot);
 
   vk::Context& context_;
   const PlanetGpuData& data_;
@@ -115,8 +148,9 @@ class PatchTextures {
   vk::ComputePipeline normalPipeline_;
   vk::Image image_;
   VkSampler sampler_ = VK_NULL_HANDLE;
-  std::vector<LayerResources> layers_;
+  std::vector<RegionResources> regions_;  // kRegionsPerLevel per layer
   std::vector<LayerContent> contents_;
+  uint64_t lastUpdateTexels_ = 0;
 };
 
 }  // namespace planet

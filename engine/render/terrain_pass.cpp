@@ -415,6 +415,14 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
       u.patchLevels[j] =
           glm::vec4(float(level.layer), float(1.0 / (texel * layout.resolution)),
                     float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
+      const glm::vec2 wrap = PatchTextures::storageOffset(level, layout.resolution);
+      if (j % 2 == 0) {
+        u.patchWrap[j / 2].x = wrap.x;
+        u.patchWrap[j / 2].y = wrap.y;
+      } else {
+        u.patchWrap[j / 2].z = wrap.x;
+        u.patchWrap[j / 2].w = wrap.y;
+      }
     }
     // Water waves: deep-water waves (ω² = g k) of falling wavelength in four directions; the
     // phase at the reference point in double, so the pixel's float part stays small.
@@ -523,11 +531,17 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     computed_ = pending_;
   }
   frame_.patchLevelsRebuilt = 0;
+  frame_.patchTexelsWritten = 0;
   if (!frame_.patchLayout.levels.empty()) {
     if (timer) timer->begin(cmd, "patches");
     frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout);
+    frame_.patchTexelsWritten = patches_->lastUpdateTexels();
     if (timer) timer->end(cmd);
   }
+}
+
+void TerrainPass::invalidatePatches() {
+  if (patches_) patches_->invalidate();
 }
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {

@@ -78,7 +78,8 @@ struct TerrainFrameInfo {
   uint64_t triangles = 0;
   uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped; VertexShader: drawn)
   double cpuHeightsMs = 0.0;       // HeightSource::Cpu: wall time of the CPU evaluation this frame
-  uint32_t patchLevelsRebuilt = 0;
+  uint32_t patchLevelsRebuilt = 0;  // levels the patch textures wrote to this frame (whole or new strips)
+  uint64_t patchTexelsWritten = 0;  // texels they wrote
   bool heightsComputed = false;
   bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
   bool wireframe = false;   // drawn as triangle edges
@@ -145,6 +146,8 @@ class TerrainPass {
   // Per-pixel detail from the patch textures (built on first use, after waiting for the device
   // to be idle); off, the vertex normals shade the ground (bodies a few pixels across).
   void setPatchesEnabled(bool patches) { settings_.patches = patches; }
+  // Marks every patch level stale: the next frame that samples them builds them whole.
+  void invalidatePatches();
   // The body's rings, whose shadow darkens the ground (null: none).
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).

@@ -47,11 +47,19 @@ struct PatchTile {
 };
 GPU_ASSERT_SIZE(PatchTile, 32)
 
-// One level (= one array layer) of the patch textures. Height-buffer texel (i, j), i.e. level
-// texel (i − 1, j − 1), is local texel (i + shiftA, j + shiftB) of the level's first tile row
-// and column: tile (tx, ty) = local / tileSize, and it lies local − tile·tileSize − tileSize/2
-// texels from its tile's anchor. The height pass runs over local texels, from workgroup
-// (firstGroupA, firstGroupB) = (shiftA, shiftB) / kPatchWorkgroupSize on.
+// One region of one level (= one array layer) of the patch textures: the whole level, or the
+// strip of texels a level that moved by a few texels has not computed yet. Height-buffer texel
+// (i, j), i.e. region texel (i − 1, j − 1), is local texel (i + shiftA, j + shiftB) of the
+// region's first tile row and column: tile (tx, ty) = local / tileSize, and it lies
+// local − tile·tileSize − tileSize/2 texels from its tile's anchor. The height pass runs over
+// local texels, from workgroup (firstGroupA, firstGroupB) = (shiftA, shiftB) / kPatchWorkgroupSize
+// on.
+//
+// Storage is toroidal: the texel with face index (i, j) (origin + texel index) lives at image
+// texel (i mod resolution, j mod resolution) of its layer, whatever the level's origin, so a
+// level that moves keeps the texels it still covers where they are and only the new strips are
+// computed. Region texel (x, y) is stored at ((x + storeOffsetA) mod resolution, (y +
+// storeOffsetB) mod resolution), storeOffset = the region's first face index mod resolution.
 struct PatchLevelParams {
   vec4 axisA;         // xyz: the face's axis A; w: unused
   vec4 axisB;         // xyz: the face's axis B; w: unused
@@ -63,17 +71,21 @@ struct PatchLevelParams {
   int shiftB;
   uint tileSize;      // T, texels per tile side
   uint tilesPerSide;  // row length of the tile array
-  uint resolution;    // texels per side of the level (the height buffer has resolution + 2)
+  uint resolution;    // texels per side of the level (and of the image)
   uint layerCount;    // noise layers: each tile has layerCount · kNoiseMaxOctaves table rows
   uint imageLayer;    // array layer of the patch image this level is written to
   uint firstGroupA;   // shiftA / kPatchWorkgroupSize
   uint firstGroupB;   // shiftB / kPatchWorkgroupSize
+  uint regionWidth;   // texels of the region along a (the height buffer has regionWidth + 2)
+  uint regionHeight;  // texels of the region along b
+  uint storeOffsetA;  // the region's first face index along a, mod resolution
+  uint storeOffsetB;
   uint pad0;
   uint pad1;
   uint pad2;
   PatchLayerBudget budgets[kTerrainMaxLayers];
 };
-GPU_ASSERT_SIZE(PatchLevelParams, 224)
+GPU_ASSERT_SIZE(PatchLevelParams, 240)
 
 GPU_NAMESPACE_END
 

@@ -68,6 +68,9 @@ struct FrameUniforms {
   vec4 refMinusNadir;  // xyz: c_ref − nadir direction (planet frame, unit sphere), w: patch level count
   // Per level (finest first): x: layer, y: 1 / (Δ·resolution), z, w: (a_ref − originA·Δ), (b_ref − originB·Δ)
   vec4 patchLevels[kPatchMaxLevelsGpu];
+  // Per level, two to a vec4 (level 2k in xy, 2k + 1 in zw): where its texel (0, 0) is stored,
+  // in texture coordinates (toroidal storage, shared/patch_params.h).
+  vec4 patchWrap[kPatchMaxLevelsGpu / 2u];
   AtmosphereParams atmosphere;
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[kSkyIrradianceSamplesGpu];
@@ -77,7 +80,7 @@ struct FrameUniforms {
   vec4 cameraPlanet;  // xyz: the camera in the planet frame (m, float: ring shadows only), w: 1 if the body has rings
   RingParams ring;    // the body's rings, which shadow its surface (shaders/common/rings.glsl ringShadow)
 };
-GPU_ASSERT_SIZE(FrameUniforms, 1264)
+GPU_ASSERT_SIZE(FrameUniforms, 1392)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
