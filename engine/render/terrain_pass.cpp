@@ -534,7 +534,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   frame_.patchTexelsWritten = 0;
   if (!frame_.patchLayout.levels.empty()) {
     if (timer) timer->begin(cmd, "patches");
-    frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout);
+    frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout, slot_);
     frame_.patchTexelsWritten = patches_->lastUpdateTexels();
     if (timer) timer->end(cmd);
   }
