@@ -185,7 +185,7 @@ glm::uvec2 PatchTextures::storedTexel(const PatchLevel& level, uint32_t resoluti
 
 glm::vec2 PatchTextures::storageOffset(const PatchLevel& level, uint32_t resolution) {
   const glm::uvec2 first = storedTexel(level, resolution, 0, 0);
-  return glm::vec2(first) / float(resolution);  // a power of two over a power of two or an exact ratio
+  return glm::vec2(first) / float(resolution);
 }
 
 std::vector<PatchTextures::Region> PatchTextures::staleRegions(int face, const PatchLevel& level) const {

@@ -87,7 +87,7 @@ class PatchTextures {
   // Where level texel (x, y) of `level` is stored in its layer: the face index mod resolution.
   static glm::uvec2 storedTexel(const PatchLevel& level, uint32_t resolution, int64_t x, int64_t y);
   // The storage offset of a level as the terrain samples it: (originA mod resolution,
-  // originB mod resolution) / resolution, exact in float.
+  // originB mod resolution) / resolution (exact in float for a power-of-two resolution).
   static glm::vec2 storageOffset(const PatchLevel& level, uint32_t resolution);
 
   // 2D array of settings().levelCount layers of resolution² texels, format kFormat, always in
