@@ -73,8 +73,13 @@ TEST(Viewer, DescentPathDrawsThePlanetWithoutValidationMessagesOrLeaks) {
   EXPECT_EQ(m[4].str(), m[9].str()) << "memory blocks changed after warm-up";
   // Process memory: lavapipe compiles shader variants on first use, so allow some growth, but
   // not a per-frame leak (300 frames of a 480x270 RGBA8 frame alone would be ~150 MiB).
+  // Not in an AddressSanitizer build (as the soak test): its quarantine keeps freed memory
+  // resident, so resident memory grows with what was freed (measured: 70 MiB over these frames,
+  // once, with the allocator's figures equal), and LeakSanitizer checks for leaks at exit.
+#if !defined(__SANITIZE_ADDRESS__)
   const double rssGrowthMiB = (std::stod(m[10].str()) - std::stod(m[5].str())) / 1024.0;
   EXPECT_LT(rssGrowthMiB, 64.0) << run.out;
+#endif
 
   // The screenshot is the last frame of the path, 300 m above the ground looking toward the
   // horizon, at the render size (half the window at quality low): sky above, ground below.
