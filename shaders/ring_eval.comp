@@ -1,6 +1,6 @@
 #version 450
 // Evaluates the shared ring functions (common/rings.glsl) at a list of queries, so that tests
-// can hold the GPU against the CPU reference (engine/render/ring_density.h). Not used to draw.
+// can hold the GPU against the CPU reference (engine/reference/ring_density.h). Not used to draw.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/ring_params.h"

@@ -1,4 +1,4 @@
-// The CPU reference of the atmosphere (engine/render/atmosphere_model.h): closed forms where
+// The CPU reference of the atmosphere (engine/reference/atmosphere_model.h): closed forms where
 // they exist, and the physical expectations of a clear Earth sky.
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "planet/planet_description.h"
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 #include "render/sky_tables.h"
 
 namespace planet {

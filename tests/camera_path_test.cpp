@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "planet/terrain_height.h"
-#include "render/camera_path.h"
+#include "camera/camera_path.h"
 #include "test_support.h"
 
 namespace planet::test {

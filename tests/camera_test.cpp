@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 #include "test_support.h"
 
 namespace planet::test {

@@ -20,7 +20,7 @@
 #include "export/mesh_files.h"
 #include "export/region_mesh.h"
 #include "planet/terrain_height.h"
-#include "render/patch_layout.h"
+#include "planet/cube_face.h"
 #include "test_support.h"
 
 namespace planet {

@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
-#include "render/flight_camera.h"
+#include "camera/flight_camera.h"
 #include "test_support.h"
 
 namespace planet::test {

@@ -4,7 +4,7 @@
 #include "gpu_fixture.h"
 #include "noise/noise_cpu.h"
 #include "noise/noise_gpu.h"
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 
 namespace planet::test {
 namespace {

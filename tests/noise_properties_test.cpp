@@ -8,7 +8,7 @@
 
 #include "noise/noise_cpu.h"
 #include "noise/noise_kernel.h"
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 
 namespace planet::noise {
 namespace {

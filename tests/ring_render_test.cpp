@@ -16,8 +16,8 @@
 
 #include "core/image_file.h"
 #include "gpu_fixture.h"
-#include "render/camera.h"
-#include "render/ring_density.h"
+#include "camera/camera.h"
+#include "reference/ring_density.h"
 #include "render/ring_pass.h"
 #include "spv/ring_eval.comp.h"
 #include "test_support.h"

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
-#include "render/ring_density.h"
+#include "reference/ring_density.h"
 #include "planet/ring_description.h"
 #include "test_support.h"
 

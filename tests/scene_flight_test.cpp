@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "planet/scene_description.h"
-#include "render/scene_flight.h"
+#include "camera/scene_flight.h"
 
 namespace planet {
 namespace {

@@ -11,9 +11,9 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/scene_description.h"
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 #include "render/renderer.h"
-#include "render/ring_density.h"
+#include "reference/ring_density.h"
 
 namespace planet::test {
 namespace {

@@ -9,7 +9,7 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/terrain_height.h"
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 #include "render/renderer.h"
 #include "render/sky_tables.h"
 #include "vk/commands.h"

@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "render/soak.h"
+#include "bench/soak.h"
 #include "test_support.h"
 
 namespace {

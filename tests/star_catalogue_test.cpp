@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/star_catalogue.h"
-#include "render/star_kernel.h"
+#include "reference/star_catalogue.h"
+#include "reference/star_kernel.h"
 #include "test_support.h"
 
 namespace planet::test {

@@ -15,7 +15,7 @@
 
 #include "core/image_file.h"
 #include "gpu_fixture.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 #include "render/starfield.h"
 #include "test_support.h"
 #include "vk/commands.h"

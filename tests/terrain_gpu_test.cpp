@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu_fixture.h"
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 #include "planet/terrain_height.h"
 #include "planet/terrain_points_gpu.h"
 #include "planet/terrain_rebase.h"

@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "planet/scene_description.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 #include "vk/context.h"
 
 namespace planet {

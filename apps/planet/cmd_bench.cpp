@@ -9,7 +9,7 @@
 
 #include "cli_common.h"
 #include "core/file.h"
-#include "noise/bench.h"
+#include "bench/noise_bench.h"
 #include "noise/noise_settings.h"
 
 namespace planet::cli {

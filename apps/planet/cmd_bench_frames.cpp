@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/file.h"
 #include "frame_plot.h"
-#include "render/frame_bench.h"
+#include "bench/frame_bench.h"
 
 namespace planet::cli {
 namespace {

@@ -1,6 +1,6 @@
 // planet bench soak: thousands of frames of the real-time path with camera motion and live
 // parameter changes; memory flat after the warm-up, the last image equal to a fresh render's,
-// no validation message (issue 7, point 6; render/soak.h).
+// no validation message (issue 7, point 6; bench/soak.h).
 #include <unistd.h>
 
 #include <chrono>
@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "core/file.h"
 #include "core/log.h"
-#include "render/soak.h"
+#include "bench/soak.h"
 
 namespace planet::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include "cli_common.h"
 #include "core/file.h"
 #include "core/log.h"
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 
 namespace planet::cli {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "cli_common.h"
 #include "core/error.h"
-#include "render/camera_path.h"
+#include "camera/camera_path.h"
 #include "view/viewer.h"
 #include "view/viewer_ui.h"
 

@@ -16,7 +16,7 @@
 #include "core/file.h"
 #include "core/image_file.h"
 #include "planet/terrain_height.h"
-#include "render/patch_layout.h"
+#include "planet/cube_face.h"
 
 namespace planet {
 namespace {

@@ -7,7 +7,7 @@
 //                    longitude = 180 * (2x + 1 - W) / W  degrees (-180 + (x + 0.5) * 360 / W)
 //                    direction = directionFromLatLon(latitude, longitude), as `planet height --at`
 //   cube map, face size N, one strip 6N x N: face f = x / N (0..5: +x, -x, +y, -y, +z, -z, the
-//                    project's cube faces, render/patch_layout.h), i = x - f*N, j = y;
+//                    project's cube faces, planet/cube_face.h), i = x - f*N, j = y;
 //                    a = (2i + 1 - N) / N, b = (N - 2j - 1) / N  (both in (-1, 1))
 //                    direction = normalize(normal_f + a * axisA_f + b * axisB_f)
 //                    so a face's columns run along axisA and its rows down against axisB: each

@@ -105,7 +105,7 @@ struct StarDescription {
   bool enabled = true;
   uint32_t seed = 1;
   double faintestMagnitude = 7.0;  // stars down to this apparent magnitude
-  double brightness = 0.4;         // HDR flux of a magnitude-0 star (engine/render/star_catalogue.h)
+  double brightness = 0.4;         // HDR flux of a magnitude-0 star (engine/reference/star_catalogue.h)
 };
 
 struct PlanetDescription {

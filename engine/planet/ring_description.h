@@ -1,6 +1,6 @@
 // A planetary ring as a scene describes it (issue 8, point 3; seed 001 §4.5): the annulus in the
 // ringed body's equatorial plane, the seed and colours of its noise, checked strictly, read
-// from a TOML table, and turned into the block the shaders read by render/ring_density.h's ringGpuParams.
+// from a TOML table, and turned into the block the shaders read by reference/ring_density.h's ringGpuParams.
 #pragma once
 
 #include <cstdint>

@@ -5,7 +5,7 @@
 // tested against them, no depth written, no face culled.
 //
 // The ring's own shadow on the body is ringShadow in shaders/common/rings.glsl (CPU:
-// ringShadowCpu, render/ring_density.h), for the body's shader to call with the same
+// ringShadowCpu, reference/ring_density.h), for the body's shader to call with the same
 // gpu::RingParams (ringGpuParams).
 #pragma once
 
@@ -14,9 +14,9 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 #include "planet/ring_description.h"
-#include "render/ring_density.h"
+#include "reference/ring_density.h"
 #include "shared/ring_params.h"
 #include "shared/sky_params.h"
 #include "vk/buffer.h"

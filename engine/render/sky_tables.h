@@ -11,7 +11,7 @@
 #include <vulkan/vulkan.h>
 
 #include "planet/planet_description.h"
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 #include "shared/sky_params.h"
 #include "vk/image.h"
 #include "vk/pipeline.h"

@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
-#include "render/star_catalogue.h"
+#include "reference/star_catalogue.h"
 #include "shared/star_params.h"
 #include "vk/buffer.h"
 

@@ -16,7 +16,7 @@
 #include "planet/terrain_height.h"
 #include "render/patch_textures.h"
 #include "render/sky_tables.h"
-#include "render/terrain_surface_cpu.h"
+#include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
 #include "spv/terrain.vert.h"
 #include "spv/terrain_noise.vert.h"

@@ -16,7 +16,7 @@
 #include "planet/planet_description.h"
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_rebase.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 #include "render/patch_layout.h"
 #include "shared/render_params.h"
 #include "shared/ring_params.h"

@@ -4,7 +4,7 @@
 // common subset of GLSL 4.50 and C++ like common/noise.glsl.
 //
 // Compiled as GLSL into the transmittance-table and sky shaders, and as C++ (double) into
-// engine/render/atmosphere_model.cpp, the CPU reference the tests compare the table with.
+// engine/reference/atmosphere_model.cpp, the CPU reference the tests compare the table with.
 // Rules: `real` for every floating-point value, no swizzles, explicit conversions, IN()/OUT()
 // for reference parameters. The includer provides real, vec3, ATMOSPHERE_CONST, exp/sqrt/abs/
 // max/min/clamp for its precision, and SUN_TRANSMITTANCE(a, h, muS): the transmittance from

@@ -1,6 +1,6 @@
 // Planetary rings, written once in the common subset of GLSL 4.50 and C++: included by ring.frag
 // (the ring itself), ring_eval.comp (tests) and any shader that darkens a body by the ring's
-// shadow (ringShadow), and by engine/render/ring_density.cpp (the CPU reference).
+// shadow (ringShadow), and by engine/reference/ring_density.cpp (the CPU reference).
 //
 // Seed 001 §4.5 (Algorithm 3): the ring coordinate u is 0 at the inner radius and 1 at the outer;
 // the opacity is 10 octaves of 1D Perlin noise of u, starting at frequency 2 and amplitude 20,

@@ -1,5 +1,5 @@
 // The star catalogue, written once in the common subset of GLSL 4.50 and C++: included by
-// stars.comp (one invocation per star) and by engine/render/star_kernel.h (the CPU reference).
+// stars.comp (one invocation per star) and by engine/reference/star_kernel.h (the CPU reference).
 //
 // Rules (STYLE.md): .x/.y/.z instead of swizzles, an `f` suffix on every literal, explicit
 // conversions, unsigned integer hashing only, PRECISE on every float intermediate (no fused

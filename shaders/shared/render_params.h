@@ -33,7 +33,7 @@ GPU_CONST uint kRenderBindingPatches = 10u;        // sampler2DArray: normal (pl
 GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere's transmittance table
 GPU_CONST uint kRenderBindingCount = 12u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
-GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/render/atmosphere_model.h)
+GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
 
 // Octaves of every layer at one ring's vertex spacing (engine/planet/octave_budget.h).

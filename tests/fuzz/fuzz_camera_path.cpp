@@ -1,4 +1,4 @@
-// libFuzzer target: the camera path reader (render/camera_path.h), the round trip through
+// libFuzzer target: the camera path reader (camera/camera_path.h), the round trip through
 // formatCameraPath, and sampling of whatever path it accepts (the benchmark flies it frame by
 // frame, so an accepted path must give finite poses everywhere).
 #include <bit>
@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "fuzz_check.h"
-#include "render/camera_path.h"
+#include "camera/camera_path.h"
 
 namespace {
 

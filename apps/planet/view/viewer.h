@@ -9,8 +9,8 @@
 
 #include "planet/planet_description.h"
 #include "planet/scene_description.h"
-#include "render/camera.h"
-#include "render/camera_path.h"
+#include "camera/camera.h"
+#include "camera/camera_path.h"
 #include "render/view_quality.h"
 
 namespace planet::view {

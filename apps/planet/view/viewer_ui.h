@@ -10,7 +10,7 @@
 
 #include "planet/clipmap_mesh.h"
 #include "planet/planet_description.h"
-#include "render/flight_camera.h"
+#include "camera/flight_camera.h"
 #include "render/renderer.h"
 #include "render/view_quality.h"
 #include "vk/timer.h"

@@ -1,4 +1,4 @@
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 
 #include <bit>
 #include <cmath>

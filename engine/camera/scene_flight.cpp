@@ -1,4 +1,4 @@
-#include "render/scene_flight.h"
+#include "camera/scene_flight.h"
 
 #include <fmt/format.h>
 

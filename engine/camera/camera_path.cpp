@@ -1,4 +1,4 @@
-#include "render/camera_path.h"
+#include "camera/camera_path.h"
 
 #include <algorithm>
 #include <charconv>

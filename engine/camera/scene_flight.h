@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "planet/scene_description.h"
-#include "render/camera.h"
-#include "render/flight_camera.h"
-#include "render/renderer.h"
+#include "camera/camera.h"
+#include "camera/flight_camera.h"
+#include "camera/scene_view.h"
 
 namespace planet {
 

@@ -1,6 +1,6 @@
 // Compiled with -ffp-contract=off like the noise reference (engine/CMakeLists.txt), so that
 // the double evaluation follows the shared source step by step.
-#include "render/atmosphere_model.h"
+#include "reference/atmosphere_model.h"
 
 #include <algorithm>
 #include <cmath>

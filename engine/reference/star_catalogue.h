@@ -1,6 +1,6 @@
 // The star catalogue (issue 4, point 4): settings, their validation, and the CPU reference of
 // what stars.comp generates. The model (sphere point picking, the magnitude law, temperature and
-// colour) is in shaders/common/stars.glsl, compiled here as C++ (render/star_kernel.h).
+// colour) is in shaders/common/stars.glsl, compiled here as C++ (reference/star_kernel.h).
 #pragma once
 
 #include <cstdint>

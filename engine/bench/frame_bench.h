@@ -17,8 +17,8 @@
 
 #include "core/statistics.h"
 #include "planet/planet_description.h"
-#include "render/camera.h"
-#include "render/camera_path.h"
+#include "camera/camera.h"
+#include "camera/camera_path.h"
 #include "render/terrain_pass.h"
 #include "vk/timer.h"
 

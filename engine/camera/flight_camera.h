@@ -21,8 +21,8 @@
 
 #include <glm/glm.hpp>
 
-#include "render/camera.h"
-#include "render/camera_path.h"
+#include "camera/camera.h"
+#include "camera/camera_path.h"
 
 namespace planet {
 

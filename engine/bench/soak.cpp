@@ -1,4 +1,4 @@
-#include "render/soak.h"
+#include "bench/soak.h"
 
 #include <algorithm>
 #include <chrono>

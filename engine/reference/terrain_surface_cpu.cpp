@@ -1,6 +1,6 @@
 // Compiled with -ffp-contract=off like the noise reference (engine/CMakeLists.txt): the band
 // noise below is the shader's code compiled as C++.
-#include "render/terrain_surface_cpu.h"
+#include "reference/terrain_surface_cpu.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "noise/bench.h"
+#include "bench/noise_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 #include "core/statistics.h"
 #include "noise/noise_cpu.h"
 #include "noise/noise_gpu.h"
-#include "noise/validate.h"
+#include "bench/noise_validate.h"
 #include "vk/context.h"
 
 namespace planet::noise {

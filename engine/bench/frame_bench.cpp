@@ -1,4 +1,4 @@
-#include "render/frame_bench.h"
+#include "bench/frame_bench.h"
 
 #include <algorithm>
 #include <chrono>

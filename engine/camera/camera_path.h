@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "planet/planet_description.h"
-#include "render/camera.h"
+#include "camera/camera.h"
 
 namespace planet {
 

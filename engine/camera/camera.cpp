@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "camera/camera.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,6 +1,6 @@
 // Compiled with -ffp-contract=off (engine/CMakeLists.txt): the reference must round exactly like
 // the GLSL it is compiled from.
-#include "render/ring_density.h"
+#include "reference/ring_density.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,6 +1,6 @@
 // Compiled with -ffp-contract=off (engine/CMakeLists.txt): the reference must round exactly like
 // the GLSL it is compiled from.
-#include "render/star_catalogue.h"
+#include "reference/star_catalogue.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "render/star_kernel.h"
+#include "reference/star_kernel.h"
 
 namespace planet {
 

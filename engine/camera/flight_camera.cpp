@@ -1,4 +1,4 @@
-#include "render/flight_camera.h"
+#include "camera/flight_camera.h"
 
 #include <algorithm>
 #include <cmath>
