@@ -21,6 +21,10 @@ FrameRing::FrameRing(Context& context) : context_(context) {
       VkFenceCreateInfo info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
       VK_CHECK(vkCreateFence(context.device, &info, nullptr, &fence));
     }
+    for (VkSemaphore& semaphore : acquired_) {
+      VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+      VK_CHECK(vkCreateSemaphore(context.device, &info, nullptr, &semaphore));
+    }
   } catch (...) {
     release();
     throw;
@@ -46,15 +50,32 @@ VkCommandBuffer FrameRing::begin(uint32_t slot) {
   return cmd_[slot];
 }
 
-void FrameRing::submit(uint32_t slot) {
+void FrameRing::submit(uint32_t slot) { submitWith(slot, nullptr, nullptr); }
+
+void FrameRing::submitForPresent(uint32_t slot, VkPipelineStageFlags2 acquireStage, VkSemaphore rendered) {
+  checkFrameSlot(slot);
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = acquired_[slot];
+  wait.stageMask = acquireStage;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = rendered;
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  submitWith(slot, &wait, &signal);
+}
+
+void FrameRing::submitWith(uint32_t slot, const VkSemaphoreSubmitInfo* wait, const VkSemaphoreSubmitInfo* signal) {
   checkFrameSlot(slot);
   VK_CHECK(vkEndCommandBuffer(cmd_[slot]));
   VK_CHECK(vkResetFences(context_.device, 1, &fences_[slot]));
   VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cmdInfo.commandBuffer = cmd_[slot];
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.waitSemaphoreInfoCount = wait ? 1 : 0;
+  submit.pWaitSemaphoreInfos = wait;
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
+  submit.signalSemaphoreInfoCount = signal ? 1 : 0;
+  submit.pSignalSemaphoreInfos = signal;
   VK_CHECK(queueSubmit(context_, context_.graphicsQueue, submit, fences_[slot]));
   submitted_[slot] = true;
 }
@@ -71,7 +92,14 @@ void FrameRing::waitAll() {
   for (uint32_t slot = 0; slot < kFramesInFlight; ++slot) wait(slot);
 }
 
+VkSemaphore FrameRing::acquireSemaphore(uint32_t slot) const {
+  checkFrameSlot(slot);
+  return acquired_[slot];
+}
+
 void FrameRing::release() {
+  for (VkSemaphore semaphore : acquired_)
+    if (semaphore) vkDestroySemaphore(context_.device, semaphore, nullptr);
   for (VkFence fence : fences_)
     if (fence) vkDestroyFence(context_.device, fence, nullptr);
   if (pool_) vkDestroyCommandPool(context_.device, pool_, nullptr);

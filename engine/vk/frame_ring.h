@@ -1,5 +1,6 @@
-// The command buffers and fences of kFramesInFlight frame slots, as the viewer has them, without
-// a swapchain: for the soak and the frames-in-flight test, which drive a Renderer the same way.
+// The command buffers, fences and acquire semaphores of kFramesInFlight frame slots: the viewer's,
+// and, without a swapchain, the soak's and the frames-in-flight test's, which drive a Renderer the
+// same way.
 #pragma once
 
 #include <cstdint>
@@ -23,17 +24,27 @@ class FrameRing {
   VkCommandBuffer begin(uint32_t slot);
   // Ends the slot's command buffer and submits it on the graphics queue with the slot's fence.
   void submit(uint32_t slot);
+  // As submit, for a frame drawn into a swapchain image acquired with acquireSemaphore(slot):
+  // the commands wait for that semaphore at `acquireStage`, and `rendered` (the image's present
+  // semaphore) is signalled when they complete.
+  void submitForPresent(uint32_t slot, VkPipelineStageFlags2 acquireStage, VkSemaphore rendered);
   // Waits for the slot's last frame; true when there was one.
   bool wait(uint32_t slot);
   void waitAll();
 
+  // The binary semaphore vkAcquireNextImageKHR signals for the slot's frame (unused without a
+  // swapchain). Each slot has its own: the other slot's acquire may still be pending.
+  VkSemaphore acquireSemaphore(uint32_t slot) const;
+
  private:
+  void submitWith(uint32_t slot, const VkSemaphoreSubmitInfo* wait, const VkSemaphoreSubmitInfo* signal);
   void release();
 
   Context& context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkCommandBuffer cmd_[kFramesInFlight] = {};
   VkFence fences_[kFramesInFlight] = {};
+  VkSemaphore acquired_[kFramesInFlight] = {};
   bool submitted_[kFramesInFlight] = {};
 };
 
