@@ -30,23 +30,19 @@ uint gTableBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
-// Layer l's contribution at `offset` (sample minus tile anchor, metres), limited to the octaves
-// this level's texel spacing can show, the last one faded (octave_budget.h).
-float layerHeight(uint l, uint type, uint hash, vec3 offset) {
+// Layer l's term at `offset` (sample minus tile anchor, metres), limited to the octaves this
+// level's texel spacing can show, the last one faded (octave_budget.h).
+float layerHeight(uint l, vec3 offset);
+#define TERRAIN_UNROLLED_LAYERS
+#define TERRAIN_LAYER_COUNT kSpecLayerCount
+#define TERRAIN_LAYER_TERM(l, p, context) layerHeight(l, p)
+#include "common/terrain_height.glsl"
+
+float layerHeight(uint l, vec3 offset) {
   gPermutationBase = l * kNoisePermutationSize;
-  NoiseParams params = layers[l].noise;
-  params.type = type;
-  params.hash = hash;
-  params.octaves = level.budgets[l].octaves;
-  params.lastOctaveWeight = level.budgets[l].lastOctaveWeight;
-  OctaveWalk walk;
-  walk.q = vec3(0.0f);
-  walk.lacunarity = params.lacunarity;
-  walk.offset = offset;
-  walk.layer = l;
-  walk.octave = 0u;
-  walk.rebased = 1u;
-  return layers[l].amplitudeM * fractalNoise(params, walk);
+  NoiseParams params = terrainLayerParams(layers[l].noise, specLayerType(l), specLayerHash(l),
+                                          level.budgets[l].octaves, level.budgets[l].lastOctaveWeight);
+  return layers[l].amplitudeM * rebasedLayerNoise(params, l, offset);
 }
 
 void main() {
@@ -69,15 +65,6 @@ void main() {
   // Sample minus anchor on the radius sphere, in metres: small, as the rebased walk needs.
   precise vec3 offset =
       level.radiusM * patchDirectionOffset(level.axisA.xyz, level.axisB.xyz, level.texelSize, tiles[tile], dx, dy);
-  // The layers in order, as terrainHeightM sums them; the constant conditions fold away.
-  precise float sum = level.baseHeightM;
-  if (kSpecLayerCount > 0u) sum += layerHeight(0u, kSpecType0, kSpecHash0, offset);
-  if (kSpecLayerCount > 1u) sum += layerHeight(1u, kSpecType1, kSpecHash1, offset);
-  if (kSpecLayerCount > 2u) sum += layerHeight(2u, kSpecType2, kSpecHash2, offset);
-  if (kSpecLayerCount > 3u) sum += layerHeight(3u, kSpecType3, kSpecHash3, offset);
-  if (kSpecLayerCount > 4u) sum += layerHeight(4u, kSpecType4, kSpecHash4, offset);
-  if (kSpecLayerCount > 5u) sum += layerHeight(5u, kSpecType5, kSpecHash5, offset);
-  if (kSpecLayerCount > 6u) sum += layerHeight(6u, kSpecType6, kSpecHash6, offset);
-  if (kSpecLayerCount > 7u) sum += layerHeight(7u, kSpecType7, kSpecHash7, offset);
-  if (inside) heights[id.y * sideA + id.x] = level.heightScale * sum;
+  float height = terrainHeightSum(level.baseHeightM, level.heightScale, offset, 0u);
+  if (inside) heights[id.y * sideA + id.x] = height;
 }

@@ -1,9 +1,9 @@
 // The planet's layer count and each layer's noise type and hash as specialization constants
 // (gpu::kTerrainSpec*, shared/terrain_params.h; the host fills them with layerSpecialization()
 // of engine/planet/planet_gpu_data.h): one pipeline per planet, and the shader compiler folds
-// the branches on them. An includer sums its layers as
-//   if (kSpecLayerCount > 0u) sum += ... layer 0 with kSpecType0, kSpecHash0 ...;
-// one line per layer up to kTerrainMaxLayers, so that the conditions fold away too.
+// the branches on them. Its includers sum the layers with common/terrain_height.glsl's
+// TERRAIN_UNROLLED_LAYERS, one line per layer with a constant index, so that the conditions and
+// specLayerType/specLayerHash of a constant index fold away too.
 #ifndef PLANET_TERRAIN_LAYER_SPECIALIZATION_GLSL
 #define PLANET_TERRAIN_LAYER_SPECIALIZATION_GLSL
 
@@ -26,5 +26,15 @@ layout(constant_id = kTerrainSpecHashes + 4u) const uint kSpecHash4 = 0u;
 layout(constant_id = kTerrainSpecHashes + 5u) const uint kSpecHash5 = 0u;
 layout(constant_id = kTerrainSpecHashes + 6u) const uint kSpecHash6 = 0u;
 layout(constant_id = kTerrainSpecHashes + 7u) const uint kSpecHash7 = 0u;
+
+// Layer l's fractal type and lattice hash (l < kTerrainMaxLayers).
+uint specLayerType(uint l) {
+  return l == 0u ? kSpecType0 : l == 1u ? kSpecType1 : l == 2u ? kSpecType2 : l == 3u ? kSpecType3
+       : l == 4u ? kSpecType4 : l == 5u ? kSpecType5 : l == 6u ? kSpecType6 : kSpecType7;
+}
+uint specLayerHash(uint l) {
+  return l == 0u ? kSpecHash0 : l == 1u ? kSpecHash1 : l == 2u ? kSpecHash2 : l == 3u ? kSpecHash3
+       : l == 4u ? kSpecHash4 : l == 5u ? kSpecHash5 : l == 6u ? kSpecHash6 : kSpecHash7;
+}
 
 #endif

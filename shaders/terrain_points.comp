@@ -1,7 +1,8 @@
 #version 450
 // Terrain heights at points given as float offsets from an anchor, through the rebased octave
 // tables the CPU built in double (Earth-scale precision): `planet height --backend gpu` and the
-// GPU side of the precision tests. The same arithmetic as terrainHeightRebased() on the CPU.
+// GPU side of the precision tests. The layer sum is common/terrain_height.glsl, as in
+// terrainHeightRebased() on the CPU.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/terrain_params.h"
@@ -24,21 +25,19 @@ uint gPermutationBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
+// Layer l's term at `offset` (sample minus anchor, metres), every octave of the layer.
+float layerTerm(uint l, vec3 offset);
+#define TERRAIN_LAYER_COUNT push.layerCount
+#define TERRAIN_LAYER_TERM(l, p, context) layerTerm(l, p)
+#include "common/terrain_height.glsl"
+
+float layerTerm(uint l, vec3 offset) {
+  gPermutationBase = l * kNoisePermutationSize;
+  return layers[l].amplitudeM * rebasedLayerNoise(layers[l].noise, l, offset);
+}
+
 void main() {
   uint index = gl_GlobalInvocationID.x;
   if (index >= push.count) return;
-  precise float sum = push.baseHeightM;
-  for (uint l = 0u; l < push.layerCount; ++l) {
-    gPermutationBase = l * kNoisePermutationSize;
-    NoiseParams params = layers[l].noise;
-    OctaveWalk walk;
-    walk.q = vec3(0.0f);
-    walk.lacunarity = params.lacunarity;
-    walk.offset = offsets[index].xyz;
-    walk.layer = l;
-    walk.octave = 0u;
-    walk.rebased = 1u;
-    sum += layers[l].amplitudeM * fractalNoise(params, walk);
-  }
-  heights[index] = push.heightScale * sum;
+  heights[index] = terrainHeightSum(push.baseHeightM, push.heightScale, offsets[index].xyz, 0u);
 }

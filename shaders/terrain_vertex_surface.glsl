@@ -25,19 +25,6 @@ uint gPermutationBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
-// Face-coordinate offset of a direction from the patch reference point c (DESIGN.md precision
-// rule): with δ = d − c small, a − a_c = (δ·A (c·N) − (c·A) δ·N) / ((c·N)(c·N + δ·N)), every
-// term a product of small numbers, so the float result keeps its relative precision.
-vec2 faceOffset(vec3 delta) {
-  float cN = frame.faceNormal.w;
-  float dN = dot(delta, frame.faceNormal.xyz);
-  float denominator = cN * (cN + dN);
-  if (cN + dN <= 0.05f) return vec2(1e30f);  // far round the planet: outside every patch
-  float da = dot(delta, frame.faceAxisA.xyz) * cN - frame.faceAxisA.w * dN;
-  float db = dot(delta, frame.faceAxisB.xyz) * cN - frame.faceAxisB.w * dN;
-  return vec2(da, db) / denominator;
-}
-
 // Sea-sphere point of a mesh vertex minus the anchor, local frame: R (sinθ cosφ, sinθ sinφ,
 // cosθ − 1), with cosθ − 1 = −2 sin²(θ/2) so that it does not cancel near the pole.
 vec3 surfaceOffsetLocal(MeshVertex v) {
@@ -48,47 +35,39 @@ vec3 surfaceOffsetLocal(MeshVertex v) {
   return frame.camera.y * vec3(s * cos(phi), s * sin(phi), -2.0f * h2 * h2);
 }
 
-// Layer l's noise at the point `offsetPlanet` (planet frame, metres from the anchor) as fractal
-// `type` with lattice hash `hash`, with the octaves of `budget` (its amplitude not applied).
-float layerNoise(uint l, uint type, uint hash, vec3 offsetPlanet, RingBudget budget) {
+// Layer l's noise at the point `offsetPlanet` (planet frame, metres from the anchor), with the
+// octaves of ring `ring`'s RingBudget (its amplitude not applied). An includer that defines
+// TERRAIN_SPECIALIZED_LAYERS (and includes terrain_layer_specialization.glsl first) gets the
+// layers' count, types and hashes from specialization constants; otherwise from the buffer.
+float layerNoise(uint l, vec3 offsetPlanet, uint ring);
+#ifdef TERRAIN_SPECIALIZED_LAYERS
+#define TERRAIN_UNROLLED_LAYERS
+#define TERRAIN_LAYER_COUNT kSpecLayerCount
+#else
+#define TERRAIN_LAYER_COUNT push.layerCount
+#endif
+#define TERRAIN_LAYER_TERM(l, p, ring) layers[l].amplitudeM * layerNoise(l, p, ring)
+#include "common/terrain_height.glsl"
+#include "common/surface_attributes.glsl"
+
+float layerNoise(uint l, vec3 offsetPlanet, uint ring) {
   gPermutationBase = l * kNoisePermutationSize;
-  NoiseParams params = layers[l].noise;
-  params.type = type;
-  params.hash = hash;
-  params.octaves = budget.octaves[l];
-  params.lastOctaveWeight = budget.lastOctaveWeight[l];
-  OctaveWalk walk;
-  walk.q = vec3(0.0f);
-  walk.lacunarity = params.lacunarity;
-  walk.offset = offsetPlanet;
-  walk.layer = l;
-  walk.octave = 0u;
-  walk.rebased = 1u;
-  return fractalNoise(params, walk);
+#ifdef TERRAIN_SPECIALIZED_LAYERS
+  uint type = specLayerType(l);
+  uint hash = specLayerHash(l);
+#else
+  uint type = layers[l].noise.type;
+  uint hash = layers[l].noise.hash;
+#endif
+  NoiseParams params = terrainLayerParams(layers[l].noise, type, hash, budgets[ring].octaves[l],
+                                          budgets[ring].lastOctaveWeight[l]);
+  return rebasedLayerNoise(params, l, offsetPlanet);
 }
 
 // Height in metres above the radius sphere at the point `offsetPlanet` (planet frame, metres
-// from the anchor), with the octaves of ring `ring`. An includer that defines
-// TERRAIN_SPECIALIZED_LAYERS (and includes terrain_layer_specialization.glsl first) gets the
-// layers' count, types and hashes from specialization constants; otherwise from the buffer.
+// from the anchor), with the octaves of ring `ring`.
 float surfaceHeight(vec3 offsetPlanet, uint ring) {
-  RingBudget budget = budgets[ring];
-  precise float sum = push.baseHeightM;
-#ifdef TERRAIN_SPECIALIZED_LAYERS
-  // The layers in order, as terrainHeightM sums them; the constant conditions fold away.
-  if (kSpecLayerCount > 0u) sum += layers[0].amplitudeM * layerNoise(0u, kSpecType0, kSpecHash0, offsetPlanet, budget);
-  if (kSpecLayerCount > 1u) sum += layers[1].amplitudeM * layerNoise(1u, kSpecType1, kSpecHash1, offsetPlanet, budget);
-  if (kSpecLayerCount > 2u) sum += layers[2].amplitudeM * layerNoise(2u, kSpecType2, kSpecHash2, offsetPlanet, budget);
-  if (kSpecLayerCount > 3u) sum += layers[3].amplitudeM * layerNoise(3u, kSpecType3, kSpecHash3, offsetPlanet, budget);
-  if (kSpecLayerCount > 4u) sum += layers[4].amplitudeM * layerNoise(4u, kSpecType4, kSpecHash4, offsetPlanet, budget);
-  if (kSpecLayerCount > 5u) sum += layers[5].amplitudeM * layerNoise(5u, kSpecType5, kSpecHash5, offsetPlanet, budget);
-  if (kSpecLayerCount > 6u) sum += layers[6].amplitudeM * layerNoise(6u, kSpecType6, kSpecHash6, offsetPlanet, budget);
-  if (kSpecLayerCount > 7u) sum += layers[7].amplitudeM * layerNoise(7u, kSpecType7, kSpecHash7, offsetPlanet, budget);
-#else
-  for (uint l = 0u; l < push.layerCount; ++l)
-    sum += layers[l].amplitudeM * layerNoise(l, layers[l].noise.type, layers[l].noise.hash, offsetPlanet, budget);
-#endif
-  return push.heightScale * sum;
+  return terrainHeightSum(push.baseHeightM, push.heightScale, offsetPlanet, ring);
 }
 
 // Displaced position of mesh vertex `index` minus the anchor, local frame (what
@@ -100,31 +79,10 @@ vec3 surfacePosition(uint index) {
   return offsetLocal + height * v.direction.xyz;
 }
 
-// Shading attributes at `offsetPlanet`: face Δa, Δb of the patch textures, colour noise,
-// sin(latitude) (layout of kRenderBindingAttributes).
+// Shading attributes at `offsetPlanet` (common/surface_attributes.glsl).
 vec4 surfaceAttributes(vec3 offsetPlanet) {
-  float radius = frame.camera.y;
-  // Planet-frame direction, good to float precision (colour and latitude only).
-  vec3 nadir = frame.localToPlanet[2].xyz;
-  vec3 directionPlanet = nadir + offsetPlanet / radius;
-  // Colour noise: four fBm octaves from bandWavelengthM down (tens of km to a few km). It frays
-  // the colour-band edges and picks the vegetation (terrain.frag); float is enough here.
-  NoiseParams band;
-  band.type = kNoiseFbm;
-  band.octaves = 4u;
-  band.hash = kNoiseHashFast;
-  band.seedMix = 0x5bd1e995u;
-  band.lacunarity = 2.0f;
-  band.octaveWeight = 0.5f;
-  band.offset = 0.0f;
-  band.gain = 0.0f;
-  band.count = 0u;
-  band.firstIndex = 0u;
-  band.lastOctaveWeight = 1.0f;
-  band.pad2 = 0u;
-  float bandNoise = evaluateFbm(band, directionPlanet * (radius * push.bandFrequency));
-  vec2 face = faceOffset(offsetPlanet / radius - frame.refMinusNadir.xyz);
-  return vec4(face, bandNoise, normalize(directionPlanet).z);
+  return terrainSurfaceAttributes(offsetPlanet, frame.camera.y, frame.localToPlanet[2].xyz, frame.refMinusNadir.xyz,
+                                  frame.faceNormal, frame.faceAxisA, frame.faceAxisB, push.bandFrequency);
 }
 
 #endif

@@ -42,14 +42,14 @@ bool craterOfCell(const NoiseSettings& s, int i, int j, int k, Crater& crater) {
   kernel.permutation = permutationTable(s.seed).data();
   const uint32_t seedMix = kernel.noiseSeedMix(s.seed);
   const uint32_t h = kernel.craterCellHash(uint32_t(i), uint32_t(j), uint32_t(k), uint32_t(s.hash), seedMix);
-  const uint32_t h2 = kernel.craterMix(h);
+  const uint32_t h2 = kernel.lowbias32(h);
   if (double(h2 & 0xffffu) / 65536.0 >= double(Kernel::kCraterPresence)) return false;
   crater.size = Kernel::kCraterRadiusMin + (1.0 - Kernel::kCraterRadiusMin) * double(h2 >> 16u) / 65536.0;
   crater.radius = Kernel::kCraterRadiusMax * crater.size;
   const double margin = std::max(Kernel::kCraterReach * crater.radius * (1.0 + eps) - 0.5, 0.0);
   const double span = 1.0 - 2.0 * margin;
   crater.centre =
-      glm::dvec3(i, j, k) + margin + span * glm::dvec3(h >> 16u, h & 0xffffu, kernel.craterMix(h2) >> 16u) / 65536.0;
+      glm::dvec3(i, j, k) + margin + span * glm::dvec3(h >> 16u, h & 0xffffu, kernel.lowbias32(h2) >> 16u) / 65536.0;
   return true;
 }
 

@@ -235,7 +235,7 @@ TEST(StarCatalogue, PolynomialTranscendentalsMatchTheLibraryWithinTheirStatedErr
     worstLog = std::max(worstLog, std::abs(kernel.starLog2Unit(k) - (std::log2(double(k)) - 24.0)));
   }
   for (uint32_t i = 0; i < 100000; ++i) {
-    const uint32_t k = (kernel.starHash(i) >> 8) + 1;
+    const uint32_t k = (kernel.pcgHash(i) >> 8) + 1;
     worstLog = std::max(worstLog, std::abs(kernel.starLog2Unit(k) - (std::log2(double(k)) - 24.0)));
   }
   // A few float roundings of values up to 24 in size: 24 · 2^−24 = 1.4e-6.

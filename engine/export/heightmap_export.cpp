@@ -1,4 +1,4 @@
-// Compiled with -ffp-contract=off (engine/CMakeLists.txt): a pixel's latitude and longitude are
+// Compiled with -ffp-contract=off (the project-wide rule, top CMakeLists.txt): a pixel's latitude and longitude are
 // the sidecar's formulas to the last bit, so that `planet height --at` of them gives the same
 // height.
 #include "export/heightmap_export.h"

@@ -1,4 +1,4 @@
-// Compiled with -ffp-contract=off (engine/CMakeLists.txt): the reference must round exactly
+// Compiled with -ffp-contract=off (the project-wide rule, top CMakeLists.txt): the reference must round exactly
 // like the GLSL it is compiled from.
 #include "noise/noise_cpu.h"
 

@@ -1,4 +1,6 @@
-// The CPU reference of the noise: shaders/common/noise.glsl compiled as C++.
+// The CPU reference of the noise: shaders/common/noise.glsl compiled as C++, with the terrain's
+// layer sum and surface attributes that build on it (shaders/common/terrain_height.glsl,
+// surface_attributes.glsl).
 //
 // The GLSL functions become member functions of NoiseKernel<real>, so one source yields the
 // float reference (bit-identical to the GPU on lavapipe) and a double-precision one (the
@@ -11,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/definitions.h"
 #include "shared/noise_params.h"
 
 namespace planet::noise {
@@ -20,12 +23,7 @@ using namespace planet::gpu;
 
 template <typename Real>
 struct NoiseKernel {
-  using real = Real;
-  using vec3 = glm::vec<3, Real, glm::defaultp>;
-  using uvec3 = glm::uvec3;
-  using vec4 = glm::vec<4, Real, glm::defaultp>;
-  using uvec4 = glm::uvec4;
-  using uint = std::uint32_t;
+  PLANET_GLSL_KERNEL(Real)
 
   // The reference hash's 512-entry permutation table (permutationTable()); unused by the fast hash.
   const uint* permutation = nullptr;
@@ -33,32 +31,41 @@ struct NoiseKernel {
   const glm::vec4* octaveRemainders = nullptr;
   const glm::uvec4* octaveShifts = nullptr;
 
-  // The GLSL builtins the shared code uses, for exactly this precision (no silent promotion
-  // of float to double through a C library overload).
-  static real floor(real x) { return std::floor(x); }
-  static real abs(real x) { return std::fabs(x); }
-  static real roundEven(real x) { return std::nearbyint(x); }  // default rounding: ties to even
-  static real max(real x, real y) { return x < y ? y : x; }    // GLSL 4.50 definitions
-  static real min(real x, real y) { return y < x ? y : x; }
-  static real clamp(real x, real lo, real hi) { return min(max(x, lo), hi); }
+  // A terrain's layers as the C++ paths of common/terrain_height.glsl evaluate them
+  // (engine/planet/terrain_kernel.h fills them from a planet description).
+  struct TerrainKernelLayer {
+    const uint* permutation = nullptr;  // the layer's reference permutation table
+    NoiseParams params{};               // its octave budget applied
+    real amplitude = real(0);
+    real frequency = real(0);           // plain walks sample p · frequency
+  };
+  const TerrainKernelLayer* terrainLayers = nullptr;
+  uint terrainLayerCount = 0u;
+  // 0: p is a planet-frame point, each layer walks plainly from p · frequency (the double
+  // reference); 1: p is an offset from the anchor of the rebased octave tables (float path).
+  uint terrainRebased = 0u;
 
-#define IN(T) const T&
-#define OUT(T) T&
-#define INOUT(T) T&
+  // TERRAIN_LAYER_TERM of common/terrain_height.glsl.
+  real terrainLayerTerm(uint l, vec3 p, uint /*context: unused on the CPU*/) {
+    const TerrainKernelLayer& layer = terrainLayers[l];
+    permutation = layer.permutation;
+    if (terrainRebased != 0u) return layer.amplitude * rebasedLayerNoise(layer.params, l, p);
+    return layer.amplitude * evaluateNoise(layer.params, p * layer.frequency);
+  }
+
 #define OCTAVE_REMAINDER(layer, i) vec4(octaveRemainders[(layer)*kNoiseMaxOctaves + (i)])
 #define OCTAVE_SHIFT(layer, i) octaveShifts[(layer)*kNoiseMaxOctaves + (i)]
-#define NOISE_CONST static constexpr
-#define PRECISE  // C++: this file is compiled with -ffp-contract=off
 #define PERM(i) permutation[i]
+#define TERRAIN_LAYER_COUNT terrainLayerCount
+#define TERRAIN_LAYER_TERM(l, p, context) terrainLayerTerm(l, p, context)
 #include "common/noise.glsl"
-#undef IN
-#undef OUT
-#undef INOUT
+#include "common/terrain_height.glsl"
+#include "common/surface_attributes.glsl"
 #undef OCTAVE_REMAINDER
 #undef OCTAVE_SHIFT
-#undef NOISE_CONST
-#undef PRECISE
 #undef PERM
+#undef TERRAIN_LAYER_COUNT
+#undef TERRAIN_LAYER_TERM
 };
 
 }  // namespace kernel_detail

@@ -1,4 +1,4 @@
-// Compiled with -ffp-contract=off like the rest of the noise reference (engine/CMakeLists.txt).
+// Compiled without fused multiply-adds like every C++ build of shared GLSL (the top CMakeLists.txt).
 #include "planet/terrain_height.h"
 
 #include <algorithm>
@@ -8,9 +8,8 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "noise/noise_kernel.h"
-#include "noise/permutation.h"
 #include "planet/octave_budget.h"
+#include "planet/terrain_kernel.h"
 
 namespace planet {
 
@@ -41,18 +40,12 @@ glm::dvec3 travelGreatCircle(const glm::dvec3& start, double bearingDeg, double 
 }
 
 double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& direction, double spacingM) {
-  double sum = planet.baseHeightM;
-  const glm::dvec3 onSphere = planet.radiusM * glm::normalize(direction);
-  for (const NoiseLayer& layer : planet.layers) {
-    noise::NoiseKernel<double> kernel;
-    kernel.permutation = noise::permutationTable(layer.noise.seed).data();
-    gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
-    const OctaveBudget budget = octaveBudget(layer, spacingM);
-    params.octaves = budget.octaves;
-    params.lastOctaveWeight = budget.lastOctaveWeight;
-    sum += layer.amplitudeM * kernel.evaluateNoise(params, onSphere * layer.frequency);
-  }
-  return planet.heightScale * sum;
+  // The layer sum of shaders/common/terrain_height.glsl, each layer walked plainly from the
+  // point on the radius sphere times its frequency.
+  const TerrainKernelLayers<double> layers = terrainKernelLayers<double>(planet, spacingM);
+  noise::NoiseKernel<double> kernel;
+  layers.attach(kernel, false);
+  return kernel.terrainHeightSum(planet.baseHeightM, planet.heightScale, planet.radiusM * glm::normalize(direction), 0u);
 }
 
 double surfaceHeightM(const PlanetDescription& planet, const glm::dvec3& direction) {

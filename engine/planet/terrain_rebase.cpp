@@ -1,11 +1,9 @@
-// Compiled with -ffp-contract=off like the rest of the noise reference (engine/CMakeLists.txt).
+// Compiled without fused multiply-adds like every C++ build of shared GLSL (the top CMakeLists.txt).
 #include "planet/terrain_rebase.h"
 
 #include <cmath>
 
-#include "noise/noise_kernel.h"
-#include "noise/permutation.h"
-#include "planet/octave_budget.h"
+#include "planet/terrain_kernel.h"
 
 namespace planet {
 namespace {
@@ -53,27 +51,14 @@ OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3
 
 float terrainHeightRebased(const PlanetDescription& planet, const OctaveTables& tables, const glm::vec3& offsetM,
                            double spacingM) {
-  float sum = float(planet.baseHeightM);
-  for (size_t l = 0; l < planet.layers.size(); ++l) {
-    const NoiseLayer& layer = planet.layers[l];
-    noise::NoiseKernel<float> kernel;
-    kernel.permutation = noise::permutationTable(layer.noise.seed).data();
-    kernel.octaveRemainders = tables.remainders.data();
-    kernel.octaveShifts = tables.shifts.data();
-    gpu::NoiseParams params = noise::toNoiseParams(layer.noise);
-    const OctaveBudget budget = octaveBudget(layer, spacingM);
-    params.octaves = budget.octaves;
-    params.lastOctaveWeight = budget.lastOctaveWeight;
-    noise::NoiseKernel<float>::OctaveWalk walk;
-    walk.q = glm::vec3(0.0f);
-    walk.lacunarity = params.lacunarity;
-    walk.offset = offsetM;
-    walk.layer = uint32_t(l);
-    walk.octave = 0;
-    walk.rebased = 1;
-    sum += float(layer.amplitudeM) * kernel.fractalNoise(params, walk);
-  }
-  return float(planet.heightScale) * sum;
+  // The layer sum of shaders/common/terrain_height.glsl, each layer walking its row of the
+  // rebased octave tables: the arithmetic of the shaders' rebased terrain heights.
+  const TerrainKernelLayers<float> layers = terrainKernelLayers<float>(planet, spacingM);
+  noise::NoiseKernel<float> kernel;
+  kernel.octaveRemainders = tables.remainders.data();
+  kernel.octaveShifts = tables.shifts.data();
+  layers.attach(kernel, true);
+  return kernel.terrainHeightSum(float(planet.baseHeightM), float(planet.heightScale), offsetM, 0u);
 }
 
 }  // namespace planet

@@ -1,10 +1,12 @@
-// Compiled with -ffp-contract=off like the noise reference (engine/CMakeLists.txt), so that
-// the double evaluation follows the shared source step by step.
+// Compiled without fused multiply-adds (the project-wide rule), so that the double evaluation
+// follows the shared source step by step.
 #include "reference/atmosphere_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include "common/definitions.h"
 
 namespace planet {
 namespace {
@@ -17,19 +19,9 @@ using gpu::kTransmittanceWidth;
 // source gives the GPU code and this reference.
 template <typename Real>
 struct AtmosphereKernel {
-  using real = Real;
-  using vec2 = glm::vec<2, Real, glm::defaultp>;
-  using vec3 = glm::vec<3, Real, glm::defaultp>;
-  using uint = std::uint32_t;
+  PLANET_GLSL_KERNEL(Real)
 
   uint32_t sunSteps = 512;  // midpoint steps of each sun transmittance
-
-  static real exp(real x) { return std::exp(x); }
-  static real sqrt(real x) { return std::sqrt(x); }
-  static real abs(real x) { return std::fabs(x); }
-  static real max(real x, real y) { return x < y ? y : x; }
-  static real min(real x, real y) { return y < x ? y : x; }
-  static real clamp(real x, real lo, real hi) { return min(max(x, lo), hi); }
 
   // The sun's transmittance with the planet's shadow: zero once the sun is below the horizon
   // of altitude h (the GPU softens this edge over the sun's disc; the reference is sharp).
@@ -39,14 +31,8 @@ struct AtmosphereKernel {
     return vec3(exp(-depth.x), exp(-depth.y), exp(-depth.z));
   }
 
-#define IN(T) const T&
-#define OUT(T) T&
-#define ATMOSPHERE_CONST static constexpr
 #define SUN_TRANSMITTANCE(a, h, muS) sunTransmittance(a, h, muS)
 #include "common/atmosphere.glsl"
-#undef IN
-#undef OUT
-#undef ATMOSPHERE_CONST
 #undef SUN_TRANSMITTANCE
 };
 

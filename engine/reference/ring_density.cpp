@@ -1,4 +1,4 @@
-// Compiled with -ffp-contract=off (engine/CMakeLists.txt): the reference must round exactly like
+// Compiled with -ffp-contract=off (the project-wide rule, top CMakeLists.txt): the reference must round exactly like
 // the GLSL it is compiled from.
 #include "reference/ring_density.h"
 
@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "common/definitions.h"
 #include "core/error.h"
 
 namespace planet {
@@ -17,31 +18,13 @@ using namespace planet::gpu;
 // shaders/common/rings.glsl as C++: its functions become members (called on a temporary), the GLSL
 // builtins it uses defined in float (no silent promotion to double).
 struct RingKernel {
-  using real = float;
-  using uint = std::uint32_t;
-  using vec3 = glm::vec3;
-  using vec4 = glm::vec4;
-
-  static float floor(float x) { return std::floor(x); }
-  static float sqrt(float x) { return std::sqrt(x); }
-  static float pow(float x, float y) { return std::pow(x, y); }
-  static float abs(float x) { return std::fabs(x); }
-  static float max(float x, float y) { return x < y ? y : x; }  // GLSL 4.50 definitions
-  static float min(float x, float y) { return y < x ? y : x; }
-  static float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
-
-#define RING_CONST static constexpr
-#define PRECISE  // C++: compiled with -ffp-contract=off
-#define IN(T) const T&
+  PLANET_GLSL_KERNEL(float)
 #include "common/rings.glsl"
-#undef IN
-#undef PRECISE
-#undef RING_CONST
 };
 
 }  // namespace
 
-uint32_t ringHashCpu(uint32_t x) { return RingKernel().ringHash(x); }
+uint32_t ringHashCpu(uint32_t x) { return RingKernel().lowbias32(x); }
 
 double ringCoordinateCpu(const gpu::RingParams& ring, double radiusM) {
   return (radiusM - double(ring.radii.x)) / (double(ring.radii.y) - double(ring.radii.x));

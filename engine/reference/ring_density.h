@@ -18,7 +18,7 @@ namespace planet {
 gpu::RingParams ringGpuParams(const RingDescription& ring, double planetRadiusM, double sunAngularRadiusRad);
 
 
-// The shaders' integer hash (ringHash: Wellons' lowbias32), for seeding on the CPU.
+// The shaders' integer hash (lowbias32, shaders/common/hash.glsl), for seeding on the CPU.
 uint32_t ringHashCpu(uint32_t x);
 
 // The ring coordinate of body-frame radius radiusM: 0 at the inner radius, 1 at the outer.

@@ -1,4 +1,4 @@
-// Compiled with -ffp-contract=off like the noise reference (engine/CMakeLists.txt): the band
+// Compiled with -ffp-contract=off like the noise reference (the project-wide rule, top CMakeLists.txt): the band
 // noise below is the shader's code compiled as C++.
 #include "reference/terrain_surface_cpu.h"
 
@@ -13,35 +13,12 @@
 namespace planet {
 namespace {
 
-// terrain_surface.glsl's faceOffset.
-glm::vec2 faceOffset(const gpu::FrameUniforms& frame, const glm::vec3& delta) {
-  const float cN = frame.faceNormal.w;
-  const float dN = glm::dot(delta, glm::vec3(frame.faceNormal));
-  const float denominator = cN * (cN + dN);
-  if (cN + dN <= 0.05f) return glm::vec2(1e30f);
-  const float da = glm::dot(delta, glm::vec3(frame.faceAxisA)) * cN - frame.faceAxisA.w * dN;
-  const float db = glm::dot(delta, glm::vec3(frame.faceAxisB)) * cN - frame.faceAxisB.w * dN;
-  return glm::vec2(da, db) / denominator;
-}
-
-// terrain_surface.glsl's surfaceAttributes.
+// common/surface_attributes.glsl, as terrain_vertex_surface.glsl calls it.
 glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPlanet) {
   const gpu::FrameUniforms& frame = *job.frame;
-  const float radius = frame.camera.y;
-  const glm::vec3 nadir = glm::vec3(frame.localToPlanet[2]);
-  const glm::vec3 directionPlanet = nadir + offsetPlanet / radius;
-  gpu::NoiseParams band{};
-  band.type = gpu::kNoiseFbm;
-  band.octaves = 4u;
-  band.hash = gpu::kNoiseHashFast;
-  band.seedMix = 0x5bd1e995u;
-  band.lacunarity = 2.0f;
-  band.octaveWeight = 0.5f;
-  band.lastOctaveWeight = 1.0f;
-  noise::NoiseKernel<float> kernel;
-  const float bandNoise = kernel.evaluateFbm(band, directionPlanet * (radius * job.bandFrequency));
-  const glm::vec2 face = faceOffset(frame, offsetPlanet / radius - glm::vec3(frame.refMinusNadir));
-  return glm::vec4(face, bandNoise, glm::normalize(directionPlanet).z);
+  return noise::NoiseKernel<float>().terrainSurfaceAttributes(
+      offsetPlanet, frame.camera.y, glm::vec3(frame.localToPlanet[2]), glm::vec3(frame.refMinusNadir), frame.faceNormal,
+      frame.faceAxisA, frame.faceAxisB, job.bandFrequency);
 }
 
 void computeVertex(const CpuSurfaceJob& job, uint32_t index, glm::vec4* surface, glm::vec4* attributes) {

@@ -5,9 +5,8 @@
 //
 // Compiled as GLSL into the transmittance-table and sky shaders, and as C++ (double) into
 // engine/reference/atmosphere_model.cpp, the CPU reference the tests compare the table with.
-// Rules: `real` for every floating-point value, no swizzles, explicit conversions, IN()/OUT()
-// for reference parameters. The includer provides real, vec3, ATMOSPHERE_CONST, exp/sqrt/abs/
-// max/min/clamp for its precision, and SUN_TRANSMITTANCE(a, h, muS): the transmittance from
+// The rules of the common subset, types and builtins: definitions.glsl (C++: definitions.h).
+// The includer provides SUN_TRANSMITTANCE(a, h, muS): the transmittance from
 // altitude h toward a sun of zenith cosine muS, zero where the planet is in the way (GLSL: the
 // table; C++: the integral below).
 //
@@ -17,14 +16,9 @@
 #ifndef PLANET_COMMON_ATMOSPHERE_GLSL
 #define PLANET_COMMON_ATMOSPHERE_GLSL
 
-#ifndef __cplusplus
-#define real float
-#define IN(T) in T
-#define OUT(T) out T
-#define ATMOSPHERE_CONST const
-#endif
+#include "common/definitions.glsl"
 
-ATMOSPHERE_CONST real kAtmospherePi = real(3.14159265358979f);
+SHARED_CONST real kAtmospherePi = real(3.14159265358979f);
 
 // The distances along a ray from altitude h with zenith cosine mu to the sphere at altitude hs:
 // x = the nearer intersection ahead, y = the farther, -1 for each that does not exist (behind

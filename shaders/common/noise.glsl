@@ -1,30 +1,20 @@
 // 3D simplex noise and its fractals, written once in the common subset of GLSL 4.50 and C++.
 //
 // This file is compiled twice: as GLSL by glslang (included by compute shaders) and as C++
-// inside engine/noise/noise_kernel.h, which is the CPU reference (float and double). Rules
-// (STYLE.md): `real` for every floating-point value, .x/.y/.z instead of swizzles, an `f`
-// suffix on every literal, explicit conversions, unsigned integer hashing only, no
-// sin/cos/exp/pow, IN()/OUT()/INOUT() for reference parameters. The includer provides `real`,
-// `vec3`, `vec4`, `uvec3`, `uvec4`, NOISE_CONST, PERM(i) (the reference permutation table),
-// OCTAVE_REMAINDER and OCTAVE_SHIFT (the rebased octave tables, see OctaveWalk) and the
-// scalar builtins.
+// inside engine/noise/noise_kernel.h, which is the CPU reference (float and double). The rules
+// of the common subset and the types, qualifiers and builtins are definitions.glsl's (C++:
+// definitions.h); no sin/cos/exp/pow in the noise. The includer provides PERM(i) (the
+// reference permutation table), OCTAVE_REMAINDER and OCTAVE_SHIFT (the rebased octave tables,
+// see OctaveWalk).
 #ifndef PLANET_COMMON_NOISE_GLSL
 #define PLANET_COMMON_NOISE_GLSL
 
-#ifndef __cplusplus
-#define real float
-#define IN(T) in T
-#define OUT(T) out T
-#define INOUT(T) inout T
-#define NOISE_CONST const
-// No multiply-add contraction or reassociation of these values (SPIR-V NoContraction): the
-// C++ side is compiled with -ffp-contract=off and both must round identically.
-#define PRECISE precise
-#endif
+#include "common/definitions.glsl"
+#include "common/hash.glsl"
 
 // Simplex skew and unskew factors for 3D (Gustavson 2005): F3 = 1/3, G3 = 1/6.
-NOISE_CONST real kSkew3 = real(1.0f) / real(3.0f);
-NOISE_CONST real kUnskew3 = real(1.0f) / real(6.0f);
+SHARED_CONST real kSkew3 = real(1.0f) / real(3.0f);
+SHARED_CONST real kUnskew3 = real(1.0f) / real(6.0f);
 // Squared kernel radius: a corner contributes (0.5 - r^2)^4. At 0.5 the kernel has vanished
 // before the point can leave the simplices around its corner, so the noise is continuous.
 // Gustavson's 2005 code uses 0.6, whose kernels are cut off where the point changes simplex:
@@ -32,10 +22,10 @@ NOISE_CONST real kUnskew3 = real(1.0f) / real(6.0f);
 // origin are faces at every octave, so the jumps add up there: terrain seams of decimetres
 // along such great circles and of metres where they meet (the poles, and latitude 0 at
 // longitudes 0, ±90, 180).
-NOISE_CONST real kKernelRadius2 = real(0.5f);
+SHARED_CONST real kKernelRadius2 = real(0.5f);
 // Final scale that maps the sum of four kernels to about [-1, 1]: the largest |N| found by a
 // search is 0.013007 before scaling, so 75 gives 0.976 (the 0.6 kernel's 32 gave 0.977).
-NOISE_CONST real kNoiseScale = real(75.0f);
+SHARED_CONST real kNoiseScale = real(75.0f);
 
 // Both hashes depend only on the lattice indices modulo 2^22 (the fast hash masks them, the
 // reference table repeats every 256), so the noise repeats every P = 3 * 2^22 units along each
@@ -45,22 +35,13 @@ NOISE_CONST real kNoiseScale = real(75.0f);
 // - lattice cells are clamped to +-2^29 before conversion to int. Beyond that an octave's
 //   kernels are all out of range and it contributes 0; a float that large cannot resolve a
 //   lattice cell anyway.
-NOISE_CONST uint kLatticeMask = 0x3fffffu;
-NOISE_CONST real kDomainPeriod = real(12582912.0f);
-NOISE_CONST real kInvDomainPeriod = real(1.0f) / real(12582912.0f);
-NOISE_CONST real kCellLimit = real(536870912.0f);
+SHARED_CONST uint kLatticeMask = 0x3fffffu;
+SHARED_CONST real kDomainPeriod = real(12582912.0f);
+SHARED_CONST real kInvDomainPeriod = real(1.0f) / real(12582912.0f);
+SHARED_CONST real kCellLimit = real(536870912.0f);
 
 // Mixes a user seed into 32 well-spread bits (once per evaluation, on the CPU).
-// Finaliser constants: Chris Wellons' "lowbias32" integer hash.
-uint noiseSeedMix(uint seed) {
-  uint h = seed ^ 0x9e3779b9u;
-  h ^= h >> 16u;
-  h *= 0x7feb352du;
-  h ^= h >> 15u;
-  h *= 0x846ca68bu;
-  h ^= h >> 16u;
-  return h;
-}
+uint noiseSeedMix(uint seed) { return lowbias32(seed ^ 0x9e3779b9u); }
 
 // Reference hash: Perlin's nested permutation lookup, as in Gustavson's reference code.
 uint referenceGradient(uint i, uint j, uint k) {
@@ -69,9 +50,9 @@ uint referenceGradient(uint i, uint j, uint k) {
 
 // Fast hash, axis term: a different odd multiplier per axis makes neighbouring cells differ
 // in many bits. The mask makes the hash, and so the noise, periodic (see kLatticeMask).
-NOISE_CONST uint kHashAxisX = 0x8da6b343u;
-NOISE_CONST uint kHashAxisY = 0xd8163841u;
-NOISE_CONST uint kHashAxisZ = 0xcb1ab31fu;
+SHARED_CONST uint kHashAxisX = 0x8da6b343u;
+SHARED_CONST uint kHashAxisY = 0xd8163841u;
+SHARED_CONST uint kHashAxisZ = 0xcb1ab31fu;
 uint hashAxis(uint index, uint multiplier) { return (index & kLatticeMask) * multiplier; }
 
 // Fast hash, final mix of seedMix + the three axis terms into a gradient index in [0, 12):
@@ -365,25 +346,15 @@ real cascadeNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 // R·(1 + eps·n), with n a simplex value at twice the octave's frequency, so rims are neither
 // circles nor level. Both hashes work: the cell values come from the integer hash (fast) or from
 // the seed-shuffled permutation table (reference; craters then repeat every 256 cells).
-NOISE_CONST real kCraterPresence = real(0.8f);   // fraction of cells that hold a crater
-NOISE_CONST real kCraterRadiusMax = real(0.3f);   // largest radius, in cells
-NOISE_CONST real kCraterRadiusMin = real(0.5f);   // smallest radius as a fraction of the largest
-NOISE_CONST real kCraterRim = real(0.3f);         // rim height over the surroundings / floor depth
-NOISE_CONST real kCraterReach = real(1.5f);       // ejecta reach in radii (E)
+SHARED_CONST real kCraterPresence = real(0.8f);   // fraction of cells that hold a crater
+SHARED_CONST real kCraterRadiusMax = real(0.3f);   // largest radius, in cells
+SHARED_CONST real kCraterRadiusMin = real(0.5f);   // smallest radius as a fraction of the largest
+SHARED_CONST real kCraterRim = real(0.3f);         // rim height over the surroundings / floor depth
+SHARED_CONST real kCraterReach = real(1.5f);       // ejecta reach in radii (E)
 // 1 / (E^2 - 1), written out: a folded constant expression might round differently in glslang.
-NOISE_CONST real kCraterInvEjectaSpan = real(0.8f);
-NOISE_CONST real kCraterMaxPerturbation = real(0.5f);
-NOISE_CONST real kInv65536 = real(1.0f) / real(65536.0f);
-
-// Full-avalanche 32-bit mix (Wellons' lowbias32, as in noiseSeedMix).
-uint craterMix(uint h) {
-  h ^= h >> 16u;
-  h *= 0x7feb352du;
-  h ^= h >> 15u;
-  h *= 0x846ca68bu;
-  h ^= h >> 16u;
-  return h;
-}
+SHARED_CONST real kCraterInvEjectaSpan = real(0.8f);
+SHARED_CONST real kCraterMaxPerturbation = real(0.5f);
+SHARED_CONST real kInv65536 = real(1.0f) / real(65536.0f);
 
 // 32 random bits of cell (i, j, k), from the layer's hash.
 uint craterCellHash(uint i, uint j, uint k, uint hashKind, uint seedMix) {
@@ -392,9 +363,9 @@ uint craterCellHash(uint i, uint j, uint k, uint hashKind, uint seedMix) {
     uint b0 = PERM((i & 255u) + PERM((j & 255u) + PERM(k & 255u)));
     uint b1 = PERM((j & 255u) + PERM((k & 255u) + PERM(i & 255u)));
     uint b2 = PERM((k & 255u) + PERM((i & 255u) + PERM(j & 255u)));
-    return craterMix(b0 | (b1 << 8u) | (b2 << 16u));
+    return lowbias32(b0 | (b1 << 8u) | (b2 << 16u));
   }
-  return craterMix(seedMix + hashAxis(i, kHashAxisX) + hashAxis(j, kHashAxisY) + hashAxis(k, kHashAxisZ));
+  return lowbias32(seedMix + hashAxis(i, kHashAxisX) + hashAxis(j, kHashAxisY) + hashAxis(k, kHashAxisZ));
 }
 
 // The cubic lattice's integer shift from a walk's simplex shift. The CPU's shift is
@@ -439,7 +410,7 @@ real craterOctave(vec3 q, uvec3 cells, real eps, real n, uint hashKind, uint see
     int az = int((cell >> 2u) & 1u) - 1;
     uint h = craterCellHash(uint(cx + ax) + cells.x, uint(cy + ay) + cells.y, uint(cz + az) + cells.z, hashKind,
                             seedMix);
-    uint h2 = craterMix(h);
+    uint h2 = lowbias32(h);
     if (real(h2 & 0xffffu) * kInv65536 >= kCraterPresence) continue;
     // size = r / rMax in [kCraterRadiusMin, 1): the crater's depth scale.
     PRECISE real size = kCraterRadiusMin + (real(1.0f) - kCraterRadiusMin) * real(h2 >> 16u) * kInv65536;
@@ -449,7 +420,7 @@ real craterOctave(vec3 q, uvec3 cells, real eps, real n, uint hashKind, uint see
     PRECISE real span = real(1.0f) - real(2.0f) * margin;
     PRECISE real dx = fx - (real(ax) + margin + span * real(h >> 16u) * kInv65536);
     PRECISE real dy = fy - (real(ay) + margin + span * real(h & 0xffffu) * kInv65536);
-    PRECISE real dz = fz - (real(az) + margin + span * real(craterMix(h2) >> 16u) * kInv65536);
+    PRECISE real dz = fz - (real(az) + margin + span * real(lowbias32(h2) >> 16u) * kInv65536);
     PRECISE real distance2 = dx * dx + dy * dy + dz * dz;
     if (distance2 >= reach * reach) continue;
     PRECISE real rp = r * radiusScale;

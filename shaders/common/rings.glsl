@@ -17,44 +17,22 @@
 // only + − × ÷, floor, clamp, max and abs, so lavapipe and the CPU agree bit for bit; the slant
 // opacity needs pow and the shadows sqrt, which other GPUs may round differently (a few ULP).
 //
-// The includer provides `real`, `uint`, `vec3`, `vec4`, RingParams (shared/ring_params.h),
-// RING_CONST, PRECISE, IN() and the builtins floor, sqrt, pow, abs, clamp, max and min.
+// Types, qualifiers and builtins: definitions.glsl (C++: definitions.h); the includer provides
+// RingParams (shared/ring_params.h).
 #ifndef PLANET_COMMON_RINGS_GLSL
 #define PLANET_COMMON_RINGS_GLSL
 
-#ifndef __cplusplus
-// Guarded: a shader may include shaders/common/noise.glsl too, which defines the same.
-#ifndef real
-#define real float
-#endif
-#ifndef PRECISE
-#define PRECISE precise
-#endif
-#ifndef IN
-#define IN(T) in T
-#endif
-#define RING_CONST const
-#endif
+#include "common/definitions.glsl"
+#include "common/hash.glsl"
 
 // --- Hashing and 1D gradient noise ------------------------------------------------------------
 
-// Chris Wellons' "lowbias32" integer hash: a bijection of the 32-bit integers.
-uint ringHash(uint x) {
-  uint h = x;
-  h ^= h >> 16u;
-  h *= 0x7feb352du;
-  h ^= h >> 15u;
-  h *= 0x846ca68bu;
-  h ^= h >> 16u;
-  return h;
-}
-
-RING_CONST real kRingUnit24 = 5.96046448e-08f;  // 2^−24
-RING_CONST uint kRingColourOctaves = 7u;  // of the colour noise: frequencies 5 .. 5 · 2.2^6 ≈ 570
+SHARED_CONST real kRingUnit24 = 5.96046448e-08f;  // 2^−24
+SHARED_CONST uint kRingColourOctaves = 7u;  // of the colour noise: frequencies 5 .. 5 · 2.2^6 ≈ 570
 
 // The gradient (slope) of lattice point i: the hash's top 24 bits as a number in [−1, 1), exact in float.
 real ringGradient(int i, uint salt) {
-  uint h = ringHash(uint(i) ^ salt);
+  uint h = lowbias32(uint(i) ^ salt);
   PRECISE real g = real(h >> 8u) * (2.0f * kRingUnit24) - 1.0f;
   return g;
 }
@@ -96,7 +74,7 @@ real ringNoiseOpacity(real u, real footprint, IN(RingParams) ring) {
   PRECISE real frequency = 2.0f;
   PRECISE real amplitude = 20.0f;
   for (uint k = 0u; k < ring.octaves; ++k) {
-    uint salt = ringHash(ring.seedMix + k);  // each octave its own lattice
+    uint salt = lowbias32(ring.seedMix + k);  // each octave its own lattice
     // The paper's `no`: a fractional offset of 0 .. 64 cells, so that the octaves' lattice
     // points (where each is 0) do not line up at u = 0.
     PRECISE real offset = real(salt >> 8u) * (64.0f * kRingUnit24);
@@ -135,7 +113,7 @@ real ringColourMix(real u, real footprint, IN(RingParams) ring) {
   PRECISE real frequency = 5.0f;
   PRECISE real amplitude = 1.0f;
   for (uint k = 0u; k < kRingColourOctaves; ++k) {
-    uint salt = ringHash((ring.seedMix ^ 0x68e31da4u) + k);
+    uint salt = lowbias32((ring.seedMix ^ 0x68e31da4u) + k);
     PRECISE real offset = real(salt >> 8u) * (64.0f * kRingUnit24);
     real weight = ringOctaveWeight(frequency, footprint);
     if (weight <= 0.0f) break;

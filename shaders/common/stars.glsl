@@ -10,36 +10,25 @@
 // bit for bit on lavapipe (and within a few ULP where a GPU's division or sqrt is not exact).
 // Every polynomial is accurate to ~1e-7 relative, far below what a picture of stars can show.
 //
-// The includer provides `uint`, `vec2`, `vec3`, `vec4`, StarRecord (shared/star_params.h),
-// STAR_CONST, PRECISE and the builtins floor, sqrt, ldexp, max, clamp and findMSB.
+// Types, qualifiers and builtins: definitions.glsl (C++: definitions.h); the includer provides
+// StarRecord (shared/star_params.h).
 #ifndef PLANET_COMMON_STARS_GLSL
 #define PLANET_COMMON_STARS_GLSL
 
-#ifndef __cplusplus
-#define STAR_CONST const
-#define PRECISE precise
-#endif
+#include "common/definitions.glsl"
+#include "common/hash.glsl"
 
 // --- Random numbers -------------------------------------------------------------------------
 
-// PCG hash (O'Neill 2014, PCG-RXS-M-XS 32/32; recommended for GPUs by Jarzynski & Olano,
-// "Hash Functions for GPU Rendering", JCGT 2020): one LCG step, then a random-shift xorshift,
-// a multiply and a final xorshift. A bijection of the 32-bit integers.
-uint starHash(uint v) {
-  uint state = v * 747796405u + 2891336453u;
-  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  return (word >> 22u) ^ word;
-}
-
 // The top 24 bits of h as a float in [0, 1 − 2^−24], exactly (every value is a float).
-STAR_CONST float kStarInvTwoPow24 = 5.96046448e-08f;  // 2^−24
+SHARED_CONST float kStarInvTwoPow24 = 5.96046448e-08f;  // 2^−24
 float starUnit(uint h) { return float(h >> 8u) * kStarInvTwoPow24; }
 
 // --- Polynomial log2, exp2, sin/cos -------------------------------------------------------------
 
-STAR_CONST float kStarSqrt2 = 1.41421354f;
-STAR_CONST float kStarTwoOverLn2 = 2.88539004f;
-STAR_CONST float kStarLn2 = 0.693147182f;
+SHARED_CONST float kStarSqrt2 = 1.41421354f;
+SHARED_CONST float kStarTwoOverLn2 = 2.88539004f;
+SHARED_CONST float kStarLn2 = 0.693147182f;
 
 // log2(k · 2^−24) for an integer 1 ≤ k ≤ 2^24, i.e. of every value (starUnit + 2^−24) takes.
 // k = f · 2^e with f in [√2/2, √2], and ln f = 2 atanh t, t = (f − 1)/(f + 1), |t| ≤ 0.172:
@@ -80,7 +69,7 @@ float starExp2(float y) {
 
 // (cos, sin) of the angle a·π/2 for a in [0, 1): nested Taylor series to θ¹⁴ and θ¹³ (the rest
 // is below 7e-10 at θ = π/2).
-STAR_CONST float kStarHalfPi = 1.57079637f;
+SHARED_CONST float kStarHalfPi = 1.57079637f;
 vec2 starCosSinQuarter(float a) {
   PRECISE float theta = a * kStarHalfPi;
   PRECISE float t2 = theta * theta;
@@ -114,7 +103,7 @@ uint starTileOf(uint index, uint count) { return (index * kStarTileCount) / coun
 // azimuth uniform give a uniform density on the sphere (a normalised cube point would not).
 // Both are drawn within the star's tile (z in its band, the azimuth in its sector), so every
 // star is uniform over the sphere and the catalogue a stratified sample of it.
-STAR_CONST uint kStarSectorsPerQuadrant = kStarTileSectors / 4u;
+SHARED_CONST uint kStarSectorsPerQuadrant = kStarTileSectors / 4u;
 vec3 starDirection(uint tile, uint hz, uint hAzimuth) {
   uint band = tile / kStarTileSectors;
   uint sector = tile - band * kStarTileSectors;
@@ -151,7 +140,7 @@ vec3 starDirection(uint tile, uint hz, uint hAzimuth) {
 // real counts grow more slowly; the law is meant for m ≲ 8. A catalogue of `count` stars to
 // `faintest` follows N(< m) = count · 10^(0.5 (m − faintest)): m = faintest + 2 log10(u) for u
 // uniform in (0, 1], the inverse of that distribution; the brightest are clamped at −1.5.
-STAR_CONST float kStarTwoLog10Of2 = 0.60206002f;  // 2 log10(2): 2 log10(u) = this · log2(u)
+SHARED_CONST float kStarTwoLog10Of2 = 0.60206002f;  // 2 log10(2): 2 log10(u) = this · log2(u)
 float starMagnitude(uint h, float faintestMagnitude) {
   PRECISE float m = faintestMagnitude + kStarTwoLog10Of2 * starLog2Unit((h >> 8u) + 1u);
   return max(m, -1.5f);  // kStarBrightestMagnitude
@@ -159,7 +148,7 @@ float starMagnitude(uint h, float faintestMagnitude) {
 
 // Relative flux 10^(−0.4 m) = 2^(−0.4 log2(10) m): 1 at magnitude 0, Pogson's ratio 100^(1/5)
 // per magnitude.
-STAR_CONST float kStarPogsonLog2 = 1.32877123f;  // 0.4 log2(10)
+SHARED_CONST float kStarPogsonLog2 = 1.32877123f;  // 0.4 log2(10)
 float starFlux(float magnitude) {
   PRECISE float y = -kStarPogsonLog2 * magnitude;
   return starExp2(y);
@@ -170,8 +159,8 @@ float starFlux(float magnitude) {
 // changes about evenly in r, the "mired" scale), so the density in T falls as T^−2: most stars
 // are cool (median 5,360 K; 28 % below 4,000 K) and one in five is a blue-white star above
 // 10,000 K.
-STAR_CONST float kStarMinReciprocalT = 0.0399999991f;  // 1000 / kStarMaxTemperatureK
-STAR_CONST float kStarReciprocalTRange = 0.293333322f;  // 1000 / kStarMinTemperatureK − the above
+SHARED_CONST float kStarMinReciprocalT = 0.0399999991f;  // 1000 / kStarMaxTemperatureK
+SHARED_CONST float kStarReciprocalTRange = 0.293333322f;  // 1000 / kStarMinTemperatureK − the above
 float starReciprocalTemperature(uint h) {
   PRECISE float r = kStarMinReciprocalT + kStarReciprocalTRange * starUnit(h);
   return r;
@@ -206,10 +195,10 @@ vec3 starColor(float r) {
 // seeds give unrelated catalogues instead of the same stars at shifted indices, and the seed is
 // offset first (by 2^32 / φ) so that star i of seed s is not star s of seed i.
 StarRecord starGenerate(uint index, uint count, uint seed, float faintestMagnitude) {
-  uint h0 = starHash(starHash(index) + starHash(seed ^ 0x9e3779b9u));
-  uint h1 = starHash(h0);
-  uint h2 = starHash(h1);
-  uint h3 = starHash(h2);
+  uint h0 = pcgHash(pcgHash(index) + pcgHash(seed ^ 0x9e3779b9u));
+  uint h1 = pcgHash(h0);
+  uint h2 = pcgHash(h1);
+  uint h3 = pcgHash(h2);
   vec3 direction = starDirection(starTileOf(index, count), h0, h1);
   float magnitude = starMagnitude(h2, faintestMagnitude);
   float r = starReciprocalTemperature(h3);

@@ -33,7 +33,7 @@ struct RingParams {
   vec4 radii;      // x: inner radius (m), y: outer radius (m), z: 1 / (outer − inner), w: casting body's radius (m)
   vec4 colour;     // rgb: linear albedo of the particles, w: overall opacity scale in [0, 1]
   vec4 variation;  // rgb: the second albedo the colour noise mixes in, w: sun angular radius (rad)
-  uint seedMix;    // ringHash(seed ^ 0x9e3779b9): the description's seed, its bits spread
+  uint seedMix;    // lowbias32(seed ^ 0x9e3779b9): the description's seed, its bits spread
   uint octaves;    // of the opacity noise, 1 .. kRingMaxOctaves
   uint gapCount;   // 0 .. kRingMaxGaps
   uint pad0;
