@@ -1,5 +1,5 @@
 #version 450
-// Generates the star catalogue once (engine/render/starfield.h): one invocation per star, the
+// Generates the star catalogue once (engine/render/star_pass.h): one invocation per star, the
 // model in common/stars.glsl.
 #extension GL_GOOGLE_include_directive : require
 

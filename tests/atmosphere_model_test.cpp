@@ -7,7 +7,7 @@
 
 #include "planet/planet_description.h"
 #include "reference/atmosphere_model.h"
-#include "render/sky_tables.h"
+#include "render/cloud_cover.h"
 
 namespace planet {
 namespace {

@@ -16,7 +16,7 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "camera/camera.h"
-#include "render/starfield.h"
+#include "render/star_pass.h"
 #include "test_support.h"
 #include "vk/commands.h"
 #include "vk/context.h"
@@ -50,7 +50,7 @@ struct Frame {
 
 // Generates the catalogue (the first time) and draws it alone into a cleared colour target with
 // a depth attachment, as the renderer's frame will.
-Frame renderStars(vk::Context& context, Starfield& starfield, uint32_t width, uint32_t height,
+Frame renderStars(vk::Context& context, StarPass& starfield, uint32_t width, uint32_t height,
                   const glm::mat4& toClip) {
   vk::Image color = vk::createImage2D(context, {width, height}, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
   vk::Image depth =
@@ -146,7 +146,7 @@ TEST_F(StarfieldGpu, GpuCatalogueEqualsTheCpuReference) {
   big.count = 100000;
   big.faintestMagnitude = 9.0f;
   for (const StarSettings& settings : {StarSettings{}, big}) {
-    Starfield starfield(context(), settings, kColorFormat, kDepthFormat);
+    StarPass starfield(context(), settings, kColorFormat, kDepthFormat);
     vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { starfield.recordGenerate(cmd); });
     const std::vector<gpu::StarRecord> gpuStars = starfield.readCatalogue();
     const std::vector<gpu::StarRecord> cpuStars = starCatalogueCpu(settings);
@@ -181,7 +181,7 @@ TEST_F(StarfieldGpu, GpuCatalogueEqualsTheCpuReference) {
 }
 
 TEST_F(StarfieldGpu, GenerationIsRecordedOnlyOnce) {
-  Starfield starfield(context(), StarSettings{}, kColorFormat, kDepthFormat);
+  StarPass starfield(context(), StarSettings{}, kColorFormat, kDepthFormat);
   EXPECT_FALSE(starfield.generated());
   EXPECT_NE(errorOf([&] { starfield.readCatalogue(); }).find("before recordGenerate"), std::string::npos);
   const glm::mat4 toClip = directionToClip(kForward, 60.0, 1.0);
@@ -195,7 +195,7 @@ TEST_F(StarfieldGpu, GenerationIsRecordedOnlyOnce) {
 }
 
 TEST_F(StarfieldGpu, DrawNeedsTheCatalogueAndAViewportHeight) {
-  Starfield starfield(context(), StarSettings{}, kColorFormat, kDepthFormat);
+  StarPass starfield(context(), StarSettings{}, kColorFormat, kDepthFormat);
   const glm::mat4 toClip = directionToClip(kForward, 60.0, 1.0);
   std::string early;
   vk::submitAndWait(context(), [&](VkCommandBuffer cmd) {
@@ -209,14 +209,14 @@ TEST_F(StarfieldGpu, DrawNeedsTheCatalogueAndAViewportHeight) {
   });
   StarSettings bad;
   bad.count = 0;
-  EXPECT_NE(errorOf([&] { Starfield s(context(), bad, kColorFormat, kDepthFormat); }).find("star count 0"),
+  EXPECT_NE(errorOf([&] { StarPass s(context(), bad, kColorFormat, kDepthFormat); }).find("star count 0"),
             std::string::npos);
 }
 
 TEST_F(StarfieldGpu, StarsAloneLookLikeAStarrySky) {
   const uint32_t size = 256;
   const StarSettings settings;
-  Starfield starfield(context(), settings, kColorFormat, kDepthFormat);
+  StarPass starfield(context(), settings, kColorFormat, kDepthFormat);
   const glm::mat4 toClip = directionToClip(kForward, 60.0, 1.0);
   const Frame frame = renderStars(context(), starfield, size, size, toClip);
   EXPECT_GT(starfield.maxPointSize(), 1.0f) << "lavapipe has largePoints: sprites up to 3 px";
@@ -279,7 +279,7 @@ TEST_F(StarfieldGpu, StarsDoNotTwinkleAsTheViewTurnsByFractionsOfAPixel) {
   // picture's stay the same while the star moves between pixel centres.
   const uint32_t size = 256;
   const StarSettings settings;
-  Starfield starfield(context(), settings, kColorFormat, kDepthFormat);
+  StarPass starfield(context(), settings, kColorFormat, kDepthFormat);
   const double pixelAngle = (60.0 / size) * std::numbers::pi / 180.0;
   // The brightest star well inside the view.
   const std::vector<gpu::StarRecord> stars = starCatalogueCpu(settings);
@@ -327,7 +327,7 @@ TEST_F(StarfieldGpu, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {
   auto render = [&](uint32_t seed) {
     StarSettings settings;
     settings.seed = seed;
-    Starfield starfield(context(), settings, kColorFormat, kDepthFormat);
+    StarPass starfield(context(), settings, kColorFormat, kDepthFormat);
     return renderStars(context(), starfield, 256, 256, toClip).bytes;
   };
   const std::vector<uint8_t> a = render(1);
@@ -349,8 +349,8 @@ TEST_F(StarfieldGpu, TileCullingChangesNoPixelAndSkipsMostStars) {
   };
   StarSettings culled, everything;
   everything.cullTiles = false;
-  Starfield a(context(), culled, kColorFormat, kDepthFormat);
-  Starfield b(context(), everything, kColorFormat, kDepthFormat);
+  StarPass a(context(), culled, kColorFormat, kDepthFormat);
+  StarPass b(context(), everything, kColorFormat, kDepthFormat);
   for (const View& v : views) {
     const glm::mat4 toClip = directionToClip(glm::normalize(v.forward), v.fovYDeg, 1.0);
     const Frame withCulling = renderStars(context(), a, 192, 192, toClip);

@@ -100,7 +100,7 @@ struct WaterDescription {
   double waveSlope = 0.06;        // their steepness (0: a mirror)
 };
 
-// The starfield behind everything (engine/render/starfield.h).
+// The starfield behind everything (engine/render/star_pass.h).
 struct StarDescription {
   bool enabled = true;
   uint32_t seed = 1;

@@ -76,75 +76,52 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
   const VkDeviceSize tiles = VkDeviceSize(maxTilesPerSide_) * maxTilesPerSide_;
   const VkDeviceSize tableRows = tiles * gpu::kTerrainMaxLayers * gpu::kNoiseMaxOctaves;
   const VkDeviceSize side = res + 2;
-  try {
-    image_ = vk::createImage2DArray(context_, {res, res}, settings_.levelCount, kFormat,
-                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
-      // Undefined contents to GENERAL, the only layout the image is used in; the fence wait
-      // orders this before everything update() records later.
-      vk::transitionImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
-    });
+  image_ = {context_, vk::createImage2DArray(context_, {res, res}, settings_.levelCount, kFormat,
+                                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)};
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
+    // Undefined contents to GENERAL, the only layout the image is used in; the fence wait
+    // orders this before everything update() records later.
+    vk::transitionImage(cmd, *image_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+  });
 
-    VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    samplerInfo.magFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    samplerInfo.minFilter = samplerInfo.magFilter;
-    samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    // Toroidal storage: a level's texels wrap around its layer, and so does filtering across
-    // the seam (the texels either side of it are neighbours on the face). The array layer is
-    // chosen by an integer coordinate, which addressing does not touch.
-    samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    samplerInfo.minLod = 0.0f;
-    samplerInfo.maxLod = 0.0f;
-    VK_CHECK(vkCreateSampler(context_.device, &samplerInfo, nullptr, &sampler_));
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  samplerInfo.minFilter = samplerInfo.magFilter;
+  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  // Toroidal storage: a level's texels wrap around its layer, and so does filtering across
+  // the seam (the texels either side of it are neighbours on the face). The array layer is
+  // chosen by an integer coordinate, which addressing does not touch.
+  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  samplerInfo.minLod = 0.0f;
+  samplerInfo.maxLod = 0.0f;
+  sampler_ = {context_, vk::createSampler(context_, samplerInfo)};
 
-    regions_.resize(size_t(settings_.levelCount) * kRegionsPerLevel);
-    contents_.resize(settings_.levelCount);
-    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    for (RegionResources& layer : regions_) {
-      const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
-      for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-        layer.level[slot] = vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload);
-        layer.remainders[slot] =
-            vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
-        layer.shifts[slot] =
-            vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
-      }
-      layer.heights = vk::createBuffer(context_, side * side * sizeof(float), storage, vk::MemoryUsage::DeviceLocal);
-    }
-    createPipelines();
-  } catch (...) {
-    release();
-    throw;
-  }
-}
-
-PatchTextures::~PatchTextures() { release(); }
-
-void PatchTextures::release() {
-  // The descriptor sets go with their pipelines' pools.
-  vk::destroyComputePipeline(context_, normalPipeline_);
-  vk::destroyComputePipeline(context_, heightPipeline_);
+  regions_.resize(size_t(settings_.levelCount) * kRegionsPerLevel);
+  contents_.resize(settings_.levelCount);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   for (RegionResources& layer : regions_) {
-    vk::destroyBuffer(context_, layer.heights);
-    for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;) {
-      vk::destroyBuffer(context_, layer.shifts[slot]);
-      vk::destroyBuffer(context_, layer.remainders[slot]);
-      vk::destroyBuffer(context_, layer.level[slot]);
+    const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      layer.level[slot] = {context_, vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload)};
+      layer.remainders[slot] = {
+          context_, vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload)};
+      layer.shifts[slot] = {
+          context_, vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload)};
     }
+    layer.heights = {context_,
+                     vk::createBuffer(context_, side * side * sizeof(float), storage, vk::MemoryUsage::DeviceLocal)};
   }
-  regions_.clear();
-  if (sampler_) vkDestroySampler(context_.device, sampler_, nullptr);
-  sampler_ = VK_NULL_HANDLE;
-  vk::destroyImage(context_, image_);
+  createPipelines();
 }
 
 void PatchTextures::createPipelines() {
-  vk::destroyComputePipeline(context_, normalPipeline_);
-  vk::destroyComputePipeline(context_, heightPipeline_);
+  // The old pipelines (and the sets from their pools) go before the new ones are made.
+  normalPipeline_.reset();
+  heightPipeline_.reset();
   specialization_ = layerSpecialization(data_.planet());
   const uint32_t sets = uint32_t(regions_.size()) * vk::kFramesInFlight;
   // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer); the
@@ -152,22 +129,22 @@ void PatchTextures::createPipelines() {
   const std::span<const uint32_t> height = hasCraterLayer(data_.planet())
                                                ? std::span<const uint32_t>(kSpv_patch_height_comp)
                                                : kSpv_patch_height_no_craters_comp;
-  heightPipeline_ = vk::createComputePipeline(context_, height, kBindings, 0, specialization_, sets);
-  normalPipeline_ = vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets);
+  heightPipeline_ = {context_, vk::createComputePipeline(context_, height, kBindings, 0, specialization_, sets)};
+  normalPipeline_ = {context_, vk::createComputePipeline(context_, kSpv_patch_normal_comp, kBindings, 0, {}, sets)};
   const VkDescriptorType buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   for (RegionResources& layer : regions_) {
     for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-      for (const vk::ComputePipeline* pipeline : {&heightPipeline_, &normalPipeline_}) {
+      for (const vk::ComputePipeline* pipeline : {&heightPipeline_.get(), &normalPipeline_.get()}) {
         VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, layer.level[slot]);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, layer.remainders[slot]);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, layer.shifts[slot]);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, layer.heights);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, *layer.level[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, *layer.remainders[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, *layer.shifts[slot]);
+        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, *layer.heights);
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLayers, buffer, data_.layers());
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingPermutations, buffer, data_.permutations());
-        vk::writeImageDescriptor(context_, set, gpu::kPatchBindingImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, image_.view,
+        vk::writeImageDescriptor(context_, set, gpu::kPatchBindingImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, image_->view,
                                  VK_IMAGE_LAYOUT_GENERAL);
-        (pipeline == &heightPipeline_ ? layer.heightSet : layer.normalSet)[slot] = set;
+        (pipeline == &heightPipeline_.get() ? layer.heightSet : layer.normalSet)[slot] = set;
       }
     }
   }
@@ -251,13 +228,13 @@ void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& lev
     const OctaveBudget budget = octaveBudget(planet.layers[l], spacingM);
     params.budgets[l] = {budget.octaves, budget.lastOctaveWeight, 0u, 0u};
   }
-  char* levelData = static_cast<char*>(resources.level[slot].mapped());
+  char* levelData = static_cast<char*>(resources.level[slot]->mapped());
   std::memcpy(levelData, &params, sizeof(params));
 
   // Each tile's anchor, its centre texel (face index k·T + T/2), in double; then its tables.
   auto* tiles = reinterpret_cast<gpu::PatchTile*>(levelData + sizeof(params));
-  auto* remainders = static_cast<glm::vec4*>(resources.remainders[slot].mapped());
-  auto* shifts = static_cast<glm::uvec4*>(resources.shifts[slot].mapped());
+  auto* remainders = static_cast<glm::vec4*>(resources.remainders[slot]->mapped());
+  auto* shifts = static_cast<glm::uvec4*>(resources.shifts[slot]->mapped());
   const size_t rowsPerTile = planet.layers.size() * gpu::kNoiseMaxOctaves;
   for (uint32_t ty = 0; ty < tilesB; ++ty) {
     for (uint32_t tx = 0; tx < tilesA; ++tx) {
@@ -273,9 +250,9 @@ void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& lev
       std::copy(tables.shifts.begin(), tables.shifts.end(), shifts + index * rowsPerTile);
     }
   }
-  context_.allocator.flush(resources.level[slot].allocation);
-  context_.allocator.flush(resources.remainders[slot].allocation);
-  context_.allocator.flush(resources.shifts[slot].allocation);
+  context_.allocator.flush(resources.level[slot]->allocation);
+  context_.allocator.flush(resources.remainders[slot]->allocation);
+  context_.allocator.flush(resources.shifts[slot]->allocation);
 }
 
 uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
@@ -330,18 +307,18 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, u
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.pipeline);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_->pipeline);
   for (const Work& w : work) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_.layout, 0, 1,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_->layout, 0, 1,
                             &w.resources->heightSet[slot], 0, nullptr);
     vkCmdDispatch(cmd, w.resources->heightGroupsA, w.resources->heightGroupsB, 1);
   }
   // The normal pass reads the heights (with their border) that the height pass wrote.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.pipeline);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_->pipeline);
   for (const Work& w : work) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_.layout, 0, 1,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalPipeline_->layout, 0, 1,
                             &w.resources->normalSet[slot], 0, nullptr);
     vkCmdDispatch(cmd, w.resources->normalGroupsA, w.resources->normalGroupsB, 1);
   }

@@ -34,6 +34,7 @@
 #include "render/patch_layout.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
+#include "vk/owned.h"
 #include "vk/pipeline.h"
 
 namespace planet::vk {
@@ -55,9 +56,6 @@ class PatchTextures {
   // must outlive this object. The image starts in VK_IMAGE_LAYOUT_GENERAL with every level
   // marked stale (one blocking submission here).
   PatchTextures(vk::Context& context, const PlanetGpuData& data, const PatchSettings& settings);
-  ~PatchTextures();
-  PatchTextures(const PatchTextures&) = delete;
-  PatchTextures& operator=(const PatchTextures&) = delete;
 
   // Records into `cmd` the compute work that brings every level of `layout` up to date: a level
   // whose layer does not already hold exactly (face, exponent, originA, originB) for this planet
@@ -92,9 +90,9 @@ class PatchTextures {
 
   // 2D array of settings().levelCount layers of resolution² texels, format kFormat, always in
   // VK_IMAGE_LAYOUT_GENERAL (between update()s), usage sampled + storage (+ transfer).
-  const vk::Image& image() const { return image_; }
+  const vk::Image& image() const { return *image_; }
   // Linear filtering (nearest where the device cannot filter kFormat), clamp to edge, no mips.
-  VkSampler sampler() const { return sampler_; }
+  VkSampler sampler() const { return sampler_.get(); }
   const PatchSettings& settings() const { return settings_; }
 
  private:
@@ -117,10 +115,11 @@ class PatchTextures {
   static constexpr uint32_t kRegionsPerLevel = 2;
   // The host-visible buffers and the descriptor sets that point at them, one per frame slot.
   struct RegionResources {
-    vk::Buffer level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
-    vk::Buffer remainders[vk::kFramesInFlight];  // each tile's octave remainders
-    vk::Buffer shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
-    vk::Buffer heights;                          // device-local: (resolution + 2)² floats, GPU-written
+    vk::Owned<vk::Buffer> level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
+    vk::Owned<vk::Buffer> remainders[vk::kFramesInFlight];  // each tile's octave remainders
+    vk::Owned<vk::Buffer> shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
+    vk::Owned<vk::Buffer> heights;                          // device-local: (resolution + 2)² floats, GPU-written
+    // From the pools of heightPipeline_ and normalPipeline_.
     VkDescriptorSet heightSet[vk::kFramesInFlight] = {};
     VkDescriptorSet normalSet[vk::kFramesInFlight] = {};
     uint32_t heightGroupsA = 0;  // the height pass's dispatch for the region last written
@@ -129,7 +128,6 @@ class PatchTextures {
     uint32_t normalGroupsB = 0;
   };
 
-  void release();
   // (Re)creates both pipelines, the height one specialized for the planet's current layers,
   // and points each region's descriptor sets at its resources.
   void createPipelines();
@@ -144,12 +142,13 @@ class PatchTextures {
   uint32_t tileSize_ = 1;  // texels per tile side
   uint32_t maxTilesPerSide_ = 1;
   std::vector<uint32_t> specialization_;  // of the height pipeline (layerSpecialization)
-  vk::ComputePipeline heightPipeline_;
-  vk::ComputePipeline normalPipeline_;
-  vk::Image image_;
-  VkSampler sampler_ = VK_NULL_HANDLE;
-  std::vector<RegionResources> regions_;  // kRegionsPerLevel per layer
   std::vector<LayerContent> contents_;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<vk::Image> image_;
+  vk::Owned<VkSampler> sampler_;
+  std::vector<RegionResources> regions_;  // kRegionsPerLevel per layer
+  vk::Owned<vk::ComputePipeline> heightPipeline_;
+  vk::Owned<vk::ComputePipeline> normalPipeline_;
   uint64_t lastUpdateTexels_ = 0;
 };
 

@@ -13,7 +13,8 @@
 #include "planet/terrain_height.h"
 #include "render/ring_pass.h"
 #include "render/sky_tables.h"
-#include "render/starfield.h"
+#include "render/star_pass.h"
+#include "render/tonemap_pass.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 
@@ -62,28 +63,34 @@ Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& b
   validateRenderSettings(settings);
   if (bodies.empty() || bodies.size() > kMaxSceneBodies)
     throw Error(fmt::format("a renderer draws 1 to {} bodies, got {}", kMaxSceneBodies, bodies.size()));
-  try {
-    createBodies(bodies, rings);
-    for (const PlanetDescription& planet : bodies) {
-      if (!planet.stars.enabled || !(planet.stars.brightness > 0.0)) continue;
-      StarSettings stars;
-      stars.seed = planet.stars.seed;
-      stars.faintestMagnitude = float(planet.stars.faintestMagnitude);
-      stars.count = realisticStarCount(stars.faintestMagnitude);
-      stars.brightness = float(planet.stars.brightness);
-      stars_ = std::make_unique<Starfield>(context, stars, kHdrFormat, kDepthFormat);
-      break;
-    }
-    createTargets();
-    if (context.timestampValidBits) {
-      // Per body: heights, patches, terrain, water and sky; then the frame's own scopes.
-      for (vk::GpuTimer& timer : timers_) timer.create(context, uint32_t(8 + 6 * bodies.size()));
-      timerCreated_ = true;
-    }
-  } catch (...) {
-    release();
-    throw;
+  createBodies(bodies, rings);
+  for (const PlanetDescription& planet : bodies) {
+    if (!planet.stars.enabled || !(planet.stars.brightness > 0.0)) continue;
+    StarSettings stars;
+    stars.seed = planet.stars.seed;
+    stars.faintestMagnitude = float(planet.stars.faintestMagnitude);
+    stars.count = realisticStarCount(stars.faintestMagnitude);
+    stars.brightness = float(planet.stars.brightness);
+    stars_ = std::make_unique<StarPass>(context, stars, kHdrFormat, kDepthFormat);
+    break;
   }
+  tonemap_ = std::make_unique<TonemapPass>(context, kColorFormat, settings.sky.exposure);
+  createTargets();
+  if (context.timestampValidBits) {
+    for (vk::GpuTimer& timer : timers_) timer.create(context, timingScopes());
+    timerCreated_ = true;
+  }
+}
+
+uint32_t Renderer::Body::timingScopes() const {
+  return SkyTables::kTimingScopes + TerrainPass::kTimingScopes + SkyPass::kTimingScopes +
+         (rings ? RingPass::kTimingScopes : 0);
+}
+
+uint32_t Renderer::timingScopes() const {
+  uint32_t scopes = (stars_ ? StarPass::kTimingScopes : 0) + TonemapPass::kTimingScopes;
+  for (const Body& body : bodies_) scopes += body.timingScopes();
+  return scopes;
 }
 
 void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
@@ -98,7 +105,7 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
     body.skyTables = std::make_unique<SkyTables>(context_, body.planet);
     body.terrain =
         std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
-    body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky, kColorFormat);
+    body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky);
     if (rings[i]) {
       body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat);
       const gpu::RingParams shadow = ringGpuParams(*rings[i], body.planet.radiusM, kSunAngularRadiusRad);
@@ -109,39 +116,17 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
   composeOrder_ = {0};
 }
 
-Renderer::~Renderer() { release(); }
-
-void Renderer::release() {
-  // destroy() skips a timer that was never created (a throw between the two creates).
-  for (vk::GpuTimer& timer : timers_) timer.destroy(context_);
-  timerCreated_ = false;
-  destroyTargets();
-  stars_.reset();
-  // Each body's passes before its tables, later bodies first.
-  while (!bodies_.empty()) {
-    Body& body = bodies_.back();
-    body.rings.reset();
-    body.sky.reset();
-    body.terrain.reset();
-    body.skyTables.reset();
-    bodies_.pop_back();
-  }
-}
+Renderer::~Renderer() = default;
 
 void Renderer::createTargets() {
   const VkExtent2D extent{settings_.width, settings_.height};
-  hdr_ =
-      vk::createImage2D(context_, extent, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
-  color_ = vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-  depth_ = vk::createImage2D(context_, extent, kDepthFormat,
-                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-  for (Body& body : bodies_) body.sky->setTargets(hdr_, depth_);
-}
-
-void Renderer::destroyTargets() {
-  vk::destroyImage(context_, depth_);
-  vk::destroyImage(context_, color_);
-  vk::destroyImage(context_, hdr_);
+  hdr_ = {context_, vk::createImage2D(context_, extent, kHdrFormat,
+                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT)};
+  color_ = {context_, vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT)};
+  depth_ = {context_, vk::createImage2D(context_, extent, kDepthFormat,
+                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)};
+  for (Body& body : bodies_) body.sky->setTargets(*hdr_, *depth_);
+  tonemap_->setSource(*hdr_);
 }
 
 void Renderer::resize(uint32_t width, uint32_t height) {
@@ -150,7 +135,10 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   next.height = height;
   validateRenderSettings(next);
   if (width == settings_.width && height == settings_.height) return;
-  destroyTargets();
+  // The old targets go before the new ones are made.
+  depth_.reset();
+  color_.reset();
+  hdr_.reset();
   settings_ = next;
   createTargets();
 }
@@ -158,6 +146,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 void Renderer::setSkySettings(const SkySettings& sky) {
   settings_.sky = sky;
   for (Body& body : bodies_) body.sky->setSettings(sky);
+  tonemap_->setExposure(sky.exposure);
 }
 
 std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
@@ -368,16 +357,19 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   for (Body& body : bodies_) body.terrain->recordCompute(cmd, timer);
   // Earlier contents are discarded: the frame clears the HDR target and the depth. The source
   // scope covers every earlier command on the queue (a previous frame still reading them).
-  hdr_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-  depth_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-  color_.layout = VK_IMAGE_LAYOUT_UNDEFINED;
-  vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+  vk::Image& hdr = *hdr_;
+  vk::Image& depth = *depth_;
+  vk::Image& color = *color_;
+  hdr.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  depth.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  color.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-  const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  const VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth_, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
   // Stars first, at infinity; everything drawn later covers them.
   if (stars_) stars_->recordDraw(cmd, starsToClip_, float(settings_.height), timer);
@@ -387,12 +379,12 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
     if (body.rings) body.rings->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
   // The compose pass reads and writes the HDR colour and samples the depth.
-  vk::transitionImage(cmd, hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vk::transitionImage(cmd, depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   for (size_t k = 0; k < composeOrder_.size(); ++k) {
     // Each compose reads the colour the previous one wrote (a nearer atmosphere over a farther one's).
     if (k > 0)
@@ -405,11 +397,11 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-  vk::transitionImage(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+  vk::transitionImage(cmd, color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  const VkRenderingAttachmentInfo colorAttachment = clearedAttachment(color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkRenderingAttachmentInfo colorAttachment = clearedAttachment(color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   beginRendering(cmd, extent, &colorAttachment, nullptr);
-  bodies_[primary_].sky->recordTonemap(cmd, timer);
+  tonemap_->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
 }
 
@@ -435,7 +427,7 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });
   result.timings = lastTimings(0);
   result.terrain = bodies_[primary_].terrain->frame();
-  std::vector<uint8_t> pixels = vk::readbackImage(context_, color_);
+  std::vector<uint8_t> pixels = vk::readbackImage(context_, *color_);
   result.image.width = settings_.width;
   result.image.height = settings_.height;
   result.image.pixels = std::move(pixels);
@@ -444,7 +436,7 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
 }
 
 std::vector<glm::vec4> Renderer::readHdrImage() {
-  std::vector<uint8_t> bytes = vk::readbackImage(context_, hdr_);
+  std::vector<uint8_t> bytes = vk::readbackImage(context_, *hdr_);
   std::vector<glm::vec4> texels(size_t(settings_.width) * settings_.height);
   const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
   for (size_t i = 0; i < texels.size(); ++i)

@@ -19,6 +19,7 @@
 #include "render/sky_pass.h"
 #include "render/terrain_pass.h"
 #include "vk/image.h"
+#include "vk/owned.h"
 #include "vk/timer.h"
 
 namespace planet::vk {
@@ -55,7 +56,8 @@ struct RenderResult {
 
 class RingPass;
 class SkyTables;
-class Starfield;
+class StarPass;
+class TonemapPass;
 
 class Renderer {
  public:
@@ -105,7 +107,7 @@ class Renderer {
   // recorded frame rewrites it, so read it only when no frame is in flight), and the GPU times
   // of the passes of the last frame recorded for `slot` (read after its fence signalled; empty
   // without timestamps or before that slot's first frame).
-  vk::Image& output() { return color_; }
+  vk::Image& output() { return *color_; }
   std::vector<vk::GpuTiming> lastTimings(uint32_t slot) const;
   // New target size (the window was resized); the passes keep everything else. Call only
   // when no submitted frame still uses the targets.
@@ -126,13 +128,16 @@ class Renderer {
   const RenderSettings& settings() const { return settings_; }
 
  private:
-  void release();
+  // One body's passes, in the order of creation (destroyed in reverse: each pass before the
+  // tables it reads).
   struct Body {
     PlanetDescription planet;
     std::unique_ptr<SkyTables> skyTables;
-    std::unique_ptr<TerrainPass> terrain;
+    std::unique_ptr<TerrainPass> terrain;  // with its water pass
     std::unique_ptr<SkyPass> sky;
     std::unique_ptr<RingPass> rings;  // null without rings
+    // The timing scopes its passes record in a frame, at most.
+    uint32_t timingScopes() const;
   };
   Renderer(vk::Context& context, const std::vector<PlanetDescription>& planets,
            const std::vector<std::optional<RingDescription>>& rings, const RenderSettings& settings);
@@ -148,18 +153,20 @@ class Renderer {
   void checkOnePlanet(const char* call, const char* sceneCall) const;
   SceneView onePlanetView(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS) const;
   void createTargets();
-  void destroyTargets();
   std::vector<glm::vec4> readHdrImage();
+  // The timing scopes a frame records at most: the sum of what each pass declares.
+  uint32_t timingScopes() const;
 
   vk::Context& context_;
   RenderSettings settings_;
   std::vector<Body> bodies_;
   size_t primary_ = 0;
   std::vector<size_t> composeOrder_;  // bodies whose compose pass runs, far to near (the primary last)
-  std::unique_ptr<Starfield> stars_;  // null when no preset has stars
-  vk::Image hdr_;
-  vk::Image color_;
-  vk::Image depth_;
+  std::unique_ptr<StarPass> stars_;   // null when no preset has stars
+  std::unique_ptr<TonemapPass> tonemap_;
+  vk::Owned<vk::Image> hdr_;
+  vk::Owned<vk::Image> color_;
+  vk::Owned<vk::Image> depth_;
   glm::mat4 starsToClip_{1.0f};
   uint32_t preparedSlot_ = UINT32_MAX;    // of the last prepare(), until its record()
   vk::GpuTimer timers_[kFramesInFlight];  // one query pool per frame slot

@@ -34,55 +34,35 @@ RingPass::RingPass(vk::Context& context, const RingDescription& ring, VkFormat c
     : context_(context), ring_(ring) {
   static_assert(gpu::kRingBindingUniforms == 0);
   validateRingDescription(ring);
-  try {
-    for (vk::Buffer& buffer : uniforms_)
-      buffer = vk::createBuffer(context, sizeof(gpu::RingUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                vk::MemoryUsage::Upload);
-    setLayout_ = vk::createSetLayout(context, kBindingTypes, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-    pool_ = vk::createDescriptorPool(context, kBindingTypes, vk::kFramesInFlight);
-    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-      sets_[slot] = vk::allocateSet(context, pool_, setLayout_);
-      vk::writeBufferDescriptor(context, sets_[slot], gpu::kRingBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                uniforms_[slot]);
-    }
-    layout_ = vk::createPipelineLayout(context, setLayout_, 0, 0);
-    vk::GraphicsPipelineDesc desc;
-    desc.vertexSpirv = kSpv_ring_vert;
-    desc.fragmentSpirv = kSpv_ring_frag;
-    desc.layout = layout_;
-    desc.colorFormat = colorFormat;
-    desc.depthFormat = depthFormat;
-    // Seen from both sides.
-    desc.cullMode = VK_CULL_MODE_NONE;
-    // Transparent, after the opaque bodies: hidden behind them (reversed Z: nearer is larger,
-    // as the terrain's GREATER test), showing over them in front, writing no depth so that what
-    // is drawn after it (other transparent layers) is not cut off.
-    desc.depthTest = depthFormat != VK_FORMAT_UNDEFINED;
-    desc.depthWrite = false;
-    desc.depthCompare = VK_COMPARE_OP_GREATER;
-    desc.alphaBlend = true;
-    desc.premultipliedAlpha = true;
-    pipeline_ = vk::createGraphicsPipeline(context, desc);
-  } catch (...) {
-    release();
-    throw;
+  for (vk::Owned<vk::Buffer>& buffer : uniforms_)
+    buffer = {context, vk::createBuffer(context, sizeof(gpu::RingUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                        vk::MemoryUsage::Upload)};
+  setLayout_ = {context,
+                vk::createSetLayout(context, kBindingTypes, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)};
+  pool_ = {context, vk::createDescriptorPool(context, kBindingTypes, vk::kFramesInFlight)};
+  for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+    sets_[slot] = vk::allocateSet(context, pool_.get(), setLayout_.get());
+    vk::writeBufferDescriptor(context, sets_[slot], gpu::kRingBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                              *uniforms_[slot]);
   }
-}
-
-RingPass::~RingPass() { release(); }
-
-void RingPass::release() {
-  VkDevice device = context_.device;
-  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  pipeline_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
-  pool_ = VK_NULL_HANDLE;
-  for (VkDescriptorSet& set : sets_) set = VK_NULL_HANDLE;  // went with the pool
-  setLayout_ = VK_NULL_HANDLE;
-  for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;) vk::destroyBuffer(context_, uniforms_[slot]);
+  layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), 0, 0)};
+  vk::GraphicsPipelineDesc desc;
+  desc.vertexSpirv = kSpv_ring_vert;
+  desc.fragmentSpirv = kSpv_ring_frag;
+  desc.layout = layout_.get();
+  desc.colorFormat = colorFormat;
+  desc.depthFormat = depthFormat;
+  // Seen from both sides.
+  desc.cullMode = VK_CULL_MODE_NONE;
+  // Transparent, after the opaque bodies: hidden behind them (reversed Z: nearer is larger,
+  // as the terrain's GREATER test), showing over them in front, writing no depth so that what
+  // is drawn after it (other transparent layers) is not cut off.
+  desc.depthTest = depthFormat != VK_FORMAT_UNDEFINED;
+  desc.depthWrite = false;
+  desc.depthCompare = VK_COMPARE_OP_GREATER;
+  desc.alphaBlend = true;
+  desc.premultipliedAlpha = true;
+  pipeline_ = {context, vk::createGraphicsPipeline(context, desc)};
 }
 
 void RingPass::prepare(const RingView& view, uint32_t slot) {
@@ -113,7 +93,7 @@ void RingPass::prepare(const RingView& view, uint32_t slot) {
   u.sun = glm::vec4(glm::vec3(sun), float(view.sunIrradiance));
   u.viewport = glm::vec4(float(1.0 / view.width), float(1.0 / view.height), float(view.ambient), 0.0f);
   u.ring = ringGpuParams(ring_, view.planetRadiusM, view.sunAngularRadiusRad);
-  vk::uploadBuffer(context_, uniforms_[slot], &u, sizeof(u));
+  vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
   edgeOn_ = std::abs(view.cameraBody.z) < 1e-3 * view.nearPlaneM;
   slot_ = slot;
   prepared_ = true;
@@ -124,8 +104,8 @@ void RingPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   drawn_ = !edgeOn_;
   if (!drawn_) return;
   if (timer) timer->begin(cmd, "rings");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &sets_[slot_], 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
   vkCmdDraw(cmd, gpu::kRingVertexCount, 1, 0, 0);
   if (timer) timer->end(cmd);
 }

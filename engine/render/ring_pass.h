@@ -20,6 +20,7 @@
 #include "shared/ring_params.h"
 #include "shared/sky_params.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 class Context;
@@ -49,13 +50,13 @@ struct RingView {
 
 class RingPass {
  public:
+  // Timing scopes a frame records at most: "rings".
+  static constexpr uint32_t kTimingScopes = 1;
+
   // Validates the description and creates the per-slot uniform buffers and the pipeline, which
   // is compatible with a dynamic-rendering scope of colorFormat and depthFormat (VK_FORMAT_UNDEFINED:
   // none; then nothing hides the ring).
   RingPass(vk::Context& context, const RingDescription& ring, VkFormat colorFormat, VkFormat depthFormat);
-  ~RingPass();
-  RingPass(const RingPass&) = delete;
-  RingPass& operator=(const RingPass&) = delete;
 
   // CPU half of a frame: the uniforms, in double until they are camera-relative, into frame slot
   // `slot`'s host-visible buffer (< vk::kFramesInFlight): call it while no frame recorded for
@@ -76,16 +77,15 @@ class RingPass {
   bool drawn() const { return drawn_; }
 
  private:
-  void release();
-
   vk::Context& context_;
   RingDescription ring_;
-  vk::Buffer uniforms_[vk::kFramesInFlight];
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // each points at its slot's buffer
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
+  vk::Owned<VkDescriptorSetLayout> setLayout_;
+  vk::Owned<VkDescriptorPool> pool_;
+  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each points at its slot's buffer
+  vk::Owned<VkPipelineLayout> layout_;
+  vk::Owned<VkPipeline> pipeline_;
 
   gpu::RingUniforms uniformData_{};
   bool prepared_ = false;

@@ -1,8 +1,7 @@
-// The sky compose and tonemap passes (issue 4, point 2; DESIGN.md "One frame", step 3):
-// after stars, terrain and water are drawn into the HDR target, the compose compute pass adds
-// the atmosphere (sky, aerial perspective), the clouds and their shadows, the sun's disc and
-// the star fading (shaders/sky.comp); the tonemap pass then maps HDR to the display target
-// (shaders/tonemap.frag) with an exposure and a filmic curve.
+// The sky pass (issue 4, point 2; DESIGN.md "One frame", step 3): after stars, terrain and
+// water are drawn into the HDR target, a compute pass adds the atmosphere (sky, aerial
+// perspective), the clouds and their shadows (cloud_cover.h), the sun's disc and the star fading
+// (shaders/sky.comp). The tonemap pass (tonemap_pass.h) then maps the HDR target to the display.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +13,7 @@
 #include "shared/sky_params.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 class Context;
@@ -53,13 +53,13 @@ struct SkyView {
 
 class SkyPass {
  public:
-  SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables, const SkySettings& settings,
-          VkFormat outputFormat);
-  ~SkyPass();
-  SkyPass(const SkyPass&) = delete;
-  SkyPass& operator=(const SkyPass&) = delete;
+  // Timing scopes a frame records at most: "sky".
+  static constexpr uint32_t kTimingScopes = 1;
 
-  // Points the passes at the frame's HDR colour (storage, GENERAL while composing) and depth
+  // `tables` (transmittance, cloud cover) must outlive the pass.
+  SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables, const SkySettings& settings);
+
+  // Points the pass at the frame's HDR colour (storage, GENERAL while composing) and depth
   // (sampled) images; call again when they are recreated.
   void setTargets(const vk::Image& hdr, const vk::Image& depth);
   // Writes the frame's uniforms (before recording) into frame slot `slot`'s buffer (<
@@ -69,8 +69,6 @@ class SkyPass {
   // Compose, reading the last prepared frame's uniforms: hdr in GENERAL and depth in
   // SHADER_READ_ONLY_OPTIMAL, both after the draws.
   void recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer);
-  // Tonemap: inside a dynamic-rendering scope on the output target.
-  void recordTonemap(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   const SkySettings& settings() const { return settings_; }
   // Takes effect at the next prepare() (every field is a per-frame uniform); throws
@@ -78,27 +76,21 @@ class SkyPass {
   void setSettings(const SkySettings& settings);
 
  private:
-  void release();
-
   vk::Context& context_;
   PlanetDescription planet_;
   const SkyTables& tables_;
   SkySettings settings_;
-  vk::Buffer uniforms_[vk::kFramesInFlight];  // per frame slot, host-visible
   gpu::SkyUniforms uniformData_{};
   uint32_t slot_ = 0;  // of the last prepare()
-  VkDescriptorSetLayout composeSetLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool composePool_ = VK_NULL_HANDLE;
-  VkDescriptorSet composeSets_[vk::kFramesInFlight] = {};  // each reads its slot's uniforms
-  VkPipelineLayout composeLayout_ = VK_NULL_HANDLE;
-  VkPipeline composePipeline_ = VK_NULL_HANDLE;
-  VkDescriptorSetLayout tonemapSetLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool tonemapPool_ = VK_NULL_HANDLE;
-  VkDescriptorSet tonemapSet_ = VK_NULL_HANDLE;
-  VkPipelineLayout tonemapLayout_ = VK_NULL_HANDLE;
-  VkPipeline tonemapPipeline_ = VK_NULL_HANDLE;
-  VkSampler depthSampler_ = VK_NULL_HANDLE;
   uint32_t width_ = 0, height_ = 0;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];  // per frame slot, host-visible
+  vk::Owned<VkSampler> depthSampler_;
+  vk::Owned<VkDescriptorSetLayout> setLayout_;
+  vk::Owned<VkDescriptorPool> pool_;
+  vk::Owned<VkPipelineLayout> layout_;
+  vk::Owned<VkPipeline> pipeline_;
+  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
 };
 
 }  // namespace planet

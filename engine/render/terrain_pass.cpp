@@ -23,8 +23,6 @@
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_heights_no_craters.comp.h"
 #include "spv/terrain_normals.comp.h"
-#include "spv/water.frag.h"
-#include "spv/water.vert.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/graphics_pipeline.h"
@@ -87,123 +85,110 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   maxTerrainHeightM_ = bounds.maxM;
   // A sea hides what lies below its surface; without one the deepest basin is the lowest sight line.
   lowestSurfaceM_ = planet.hasOcean ? std::max(bounds.minM, planet.seaLevelM) : bounds.minM;
-  try {
-    data_ = std::make_unique<PlanetGpuData>(context, planet);
-    // Wireframe draws edges only, so full patch textures would be built for nothing (yet).
-    fullPatches_ = settings.patches && !settings.wireframe;
-    PatchSettings patchSettings = settings.patchSettings;
-    if (!fullPatches_) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
-    patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
+  data_ = std::make_unique<PlanetGpuData>(context, planet);
+  // Wireframe draws edges only, so full patch textures would be built for nothing (yet).
+  fullPatches_ = settings.patches && !settings.wireframe;
+  PatchSettings patchSettings = settings.patchSettings;
+  if (!fullPatches_) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
+  patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
 
-    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    const VkDeviceSize vertexCount = mesh_.vertexCount();
-    // Static data, uploaded once (the mesh is never rebuilt per frame).
-    meshVertices_ =
-        vk::createBuffer(context, vertexCount * sizeof(ClipmapVertex), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context, meshVertices_, mesh_.vertices.data(), vertexCount * sizeof(ClipmapVertex));
-    const uint32_t rings = mesh_.ringCount();
-    const uint32_t n = settings.mesh.numPhi;
-    std::vector<uint32_t> indices = mesh_.indices;
-    indices.reserve(indices.size() + size_t(rings) * 3 * n);
-    for (uint32_t ring = 0; ring < rings; ++ring)
-      for (uint32_t i = 0; i < n; ++i)
-        indices.insert(indices.end(),
-                       {mesh_.vertexIndex(ring, i), mesh_.vertexIndex(ring, (i + 1) % n), mesh_.poleVertex()});
-    indices_ = vk::createBuffer(context, indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                                vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context, indices_, indices.data(), indices.size() * sizeof(uint32_t));
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const VkDeviceSize vertexCount = mesh_.vertexCount();
+  // Static data, uploaded once (the mesh is never rebuilt per frame).
+  meshVertices_ = {
+      context, vk::createBuffer(context, vertexCount * sizeof(ClipmapVertex), storage, vk::MemoryUsage::DeviceLocal)};
+  vk::uploadBuffer(context, *meshVertices_, mesh_.vertices.data(), vertexCount * sizeof(ClipmapVertex));
+  const uint32_t rings = mesh_.ringCount();
+  const uint32_t n = settings.mesh.numPhi;
+  std::vector<uint32_t> indices = mesh_.indices;
+  indices.reserve(indices.size() + size_t(rings) * 3 * n);
+  for (uint32_t ring = 0; ring < rings; ++ring)
+    for (uint32_t i = 0; i < n; ++i)
+      indices.insert(indices.end(),
+                     {mesh_.vertexIndex(ring, i), mesh_.vertexIndex(ring, (i + 1) % n), mesh_.poleVertex()});
+  indices_ = {context, vk::createBuffer(context, indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                        vk::MemoryUsage::DeviceLocal)};
+  vk::uploadBuffer(context, *indices_, indices.data(), indices.size() * sizeof(uint32_t));
 
-    // Octave budgets per ring (and the pole), from the ring spacing: constant for a mesh.
-    std::vector<gpu::RingBudget> budgets(rings + 1, gpu::RingBudget{});
-    for (uint32_t ring = 0; ring <= rings; ++ring) {
-      const double spacing = settings.limitOctaves ? ringSpacingM(settings.mesh, planet.radiusM, ring) : 0.0;
-      if (settings.heightSource == HeightSource::Cpu) ringSpacings_.push_back(spacing);
-      for (size_t l = 0; l < planet.layers.size(); ++l) {
-        const OctaveBudget budget = octaveBudget(planet.layers[l], spacing);
-        budgets[ring].octaves[l] = budget.octaves;
-        budgets[ring].lastOctaveWeight[l] = budget.lastOctaveWeight;
-      }
+  // Octave budgets per ring (and the pole), from the ring spacing: constant for a mesh.
+  std::vector<gpu::RingBudget> budgets(rings + 1, gpu::RingBudget{});
+  for (uint32_t ring = 0; ring <= rings; ++ring) {
+    const double spacing = settings.limitOctaves ? ringSpacingM(settings.mesh, planet.radiusM, ring) : 0.0;
+    if (settings.heightSource == HeightSource::Cpu) ringSpacings_.push_back(spacing);
+    for (size_t l = 0; l < planet.layers.size(); ++l) {
+      const OctaveBudget budget = octaveBudget(planet.layers[l], spacing);
+      budgets[ring].octaves[l] = budget.octaves;
+      budgets[ring].lastOctaveWeight[l] = budget.lastOctaveWeight;
     }
-    budgets_ =
-        vk::createBuffer(context, budgets.size() * sizeof(gpu::RingBudget), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context, budgets_, budgets.data(), budgets.size() * sizeof(gpu::RingBudget));
-
-    surface_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
-    normals_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
-    attributes_ = vk::createBuffer(context, vertexCount * sizeof(glm::vec4), storage, vk::MemoryUsage::DeviceLocal);
-    // Per-frame data the CPU writes: host-visible, one copy per frame slot.
-    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-      remainders_[slot] = vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload);
-      shifts_[slot] = vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload);
-      uniforms_[slot] = vk::createBuffer(context, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                         vk::MemoryUsage::Upload);
-      if (settings.heightSource == HeightSource::Cpu)
-        cpuStaging_[slot] = vk::createBuffer(context, 2 * vertexCount * sizeof(glm::vec4),
-                                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUsage::Upload);
-    }
-
-    const VkShaderStageFlags stages =
-        VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    setLayout_ = vk::createSetLayout(context, kBindingTypes, stages);
-    pool_ = vk::createDescriptorPool(context, kBindingTypes, vk::kFramesInFlight);
-    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-      VkDescriptorSet set = sets_[slot] = vk::allocateSet(context, pool_, setLayout_);
-      const vk::Buffer* buffers[] = {&uniforms_[slot],       &meshVertices_,   &surface_,          &normals_,
-                                     &attributes_,           &data_->layers(), &remainders_[slot], &shifts_[slot],
-                                     &data_->permutations(), &budgets_};
-      for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
-        vk::writeBufferDescriptor(context, set, b, kBindingTypes[b], *buffers[b]);
-      vk::writeImageDescriptor(context, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                               patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
-      vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance,
-                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sky.transmittanceView(),
-                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
-    }
-
-    layout_ =
-        vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_COMPUTE_BIT);
-    // Specialized on the planet's layers: lavapipe would otherwise run every fractal type and hash.
-    // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer).
-    const std::span<const uint32_t> heights = hasCraterLayer(planet)
-                                                  ? std::span<const uint32_t>(kSpv_terrain_heights_comp)
-                                                  : kSpv_terrain_heights_no_craters_comp;
-    heightsPipeline_ = vk::createComputePipelineWithLayout(context, heights, layout_, layerSpecialization(planet));
-    normalsPipeline_ = vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_);
-    if (settings.heightSource == HeightSource::VertexShader)
-      noiseDrawLayout_ =
-          vk::createPipelineLayout(context, setLayout_, sizeof(gpu::TerrainComputePush), VK_SHADER_STAGE_VERTEX_BIT);
-    (settings.wireframe ? wireframePipeline_ : fillPipeline_) = createDrawPipeline(settings.wireframe);
-    // The sea reads the vertex buffers the compute (or CPU) heights fill; seed 002's design
-    // (heights in the vertex shader, a benchmark comparison) has none, so it draws no sea.
-    if (planet.hasOcean && settings.heightSource != HeightSource::VertexShader) {
-      vk::GraphicsPipelineDesc desc;
-      desc.layout = layout_;
-      desc.vertexSpirv = kSpv_water_vert;
-      desc.fragmentSpirv = kSpv_water_frag;
-      desc.colorFormat = colorFormat;
-      desc.depthFormat = depthFormat;
-      desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // as the ground's (createDrawPipeline)
-      // The sea over the ground: premultiplied "over" blending, depth tested and written.
-      desc.alphaBlend = true;
-      desc.premultipliedAlpha = true;
-      waterPipeline_ = vk::createGraphicsPipeline(context, desc);
-    }
-  } catch (...) {
-    release();
-    throw;
   }
+  budgets_ = {context, vk::createBuffer(context, budgets.size() * sizeof(gpu::RingBudget), storage,
+                                        vk::MemoryUsage::DeviceLocal)};
+  vk::uploadBuffer(context, *budgets_, budgets.data(), budgets.size() * sizeof(gpu::RingBudget));
+
+  const VkDeviceSize vertexBytes = vertexCount * sizeof(glm::vec4);
+  surface_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
+  normals_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
+  attributes_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
+  // Per-frame data the CPU writes: host-visible, one copy per frame slot.
+  for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+    remainders_[slot] = {context,
+                         vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload)};
+    shifts_[slot] = {context,
+                     vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload)};
+    uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
+                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
+    if (settings.heightSource == HeightSource::Cpu)
+      cpuStaging_[slot] = {context, vk::createBuffer(context, 2 * vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                                     vk::MemoryUsage::Upload)};
+  }
+
+  const VkShaderStageFlags stages =
+      VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  setLayout_ = {context, vk::createSetLayout(context, kBindingTypes, stages)};
+  pool_ = {context, vk::createDescriptorPool(context, kBindingTypes, vk::kFramesInFlight)};
+  for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+    VkDescriptorSet set = sets_[slot] = vk::allocateSet(context, pool_.get(), setLayout_.get());
+    const vk::Buffer* buffers[] = {&*uniforms_[slot],      &*meshVertices_,  &*surface_,          &*normals_,
+                                   &*attributes_,          &data_->layers(), &*remainders_[slot], &*shifts_[slot],
+                                   &data_->permutations(), &*budgets_};
+    for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
+      vk::writeBufferDescriptor(context, set, b, kBindingTypes[b], *buffers[b]);
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
+  }
+
+  layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
+                                               VK_SHADER_STAGE_COMPUTE_BIT)};
+  // Specialized on the planet's layers: lavapipe would otherwise run every fractal type and hash.
+  // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer).
+  const std::span<const uint32_t> heights = hasCraterLayer(planet)
+                                                ? std::span<const uint32_t>(kSpv_terrain_heights_comp)
+                                                : kSpv_terrain_heights_no_craters_comp;
+  heightsPipeline_ = {
+      context, vk::createComputePipelineWithLayout(context, heights, layout_.get(), layerSpecialization(planet))};
+  normalsPipeline_ = {context, vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_.get())};
+  if (settings.heightSource == HeightSource::VertexShader)
+    noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
+                                                          VK_SHADER_STAGE_VERTEX_BIT)};
+  (settings.wireframe ? wireframePipeline_ : fillPipeline_) = {context, createDrawPipeline(settings.wireframe)};
+  // The sea reads the vertex buffers the compute (or CPU) heights fill; seed 002's design
+  // (heights in the vertex shader, a benchmark comparison) has none, so it draws no sea.
+  if (planet.hasOcean && settings.heightSource != HeightSource::VertexShader)
+    water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat);
 }
 
-TerrainPass::~TerrainPass() { release(); }
+TerrainPass::~TerrainPass() = default;
 
 VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
   desc.fragmentSpirv = kSpv_terrain_frag;
-  desc.layout = layout_;
-  if (noiseDrawLayout_) {  // HeightSource::VertexShader
+  desc.layout = layout_.get();
+  if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader
     desc.vertexSpirv = kSpv_terrain_noise_vert;
-    desc.layout = noiseDrawLayout_;
+    desc.layout = noiseDrawLayout_.get();
   }
   desc.colorFormat = colorFormat_;
   desc.depthFormat = depthFormat_;
@@ -216,8 +201,8 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
 }
 
 void TerrainPass::buildForToggles() {
-  VkPipeline& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
-  if (!draw) draw = createDrawPipeline(settings_.wireframe);
+  vk::Owned<VkPipeline>& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
+  if (!draw.get()) draw = {context_, createDrawPipeline(settings_.wireframe)};
   if (settings_.patches && !settings_.wireframe && !fullPatches_) {
     // The pass started in wireframe with a stand-in. A frame of the other slot may still use
     // the old textures and the descriptor sets: wait for every frame (once per pass).
@@ -230,31 +215,6 @@ void TerrainPass::buildForToggles() {
     fullPatches_ = true;
     if (lod_) lod_->patchLayout = PatchLayout{};  // chosen for the new textures' settings
   }
-}
-
-void TerrainPass::release() {
-  VkDevice device = context_.device;
-  if (waterPipeline_) vkDestroyPipeline(device, waterPipeline_, nullptr);
-  if (wireframePipeline_) vkDestroyPipeline(device, wireframePipeline_, nullptr);
-  if (fillPipeline_) vkDestroyPipeline(device, fillPipeline_, nullptr);
-  if (normalsPipeline_) vkDestroyPipeline(device, normalsPipeline_, nullptr);
-  if (heightsPipeline_) vkDestroyPipeline(device, heightsPipeline_, nullptr);
-  if (noiseDrawLayout_) vkDestroyPipelineLayout(device, noiseDrawLayout_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  waterPipeline_ = wireframePipeline_ = fillPipeline_ = normalsPipeline_ = heightsPipeline_ = VK_NULL_HANDLE;
-  layout_ = noiseDrawLayout_ = VK_NULL_HANDLE;
-  pool_ = VK_NULL_HANDLE;
-  for (VkDescriptorSet& set : sets_) set = VK_NULL_HANDLE;  // went with the pool
-  setLayout_ = VK_NULL_HANDLE;
-  for (uint32_t slot = vk::kFramesInFlight; slot-- > 0;)
-    for (vk::Buffer* b : {&cpuStaging_[slot], &uniforms_[slot], &shifts_[slot], &remainders_[slot]})
-      vk::destroyBuffer(context_, *b);
-  for (vk::Buffer* b : {&attributes_, &normals_, &surface_, &budgets_, &indices_, &meshVertices_})
-    vk::destroyBuffer(context_, *b);
-  patches_.reset();
-  data_.reset();
 }
 
 TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFrame& orientation,
@@ -286,9 +246,9 @@ TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFr
 
 void TerrainPass::writeTables() {
   // Host-visible: plain copies, no submission (the slot's previous frame has completed).
-  vk::uploadBuffer(context_, remainders_[slot_], tables_.remainders.data(),
+  vk::uploadBuffer(context_, *remainders_[slot_], tables_.remainders.data(),
                    tables_.remainders.size() * sizeof(glm::vec4));
-  vk::uploadBuffer(context_, shifts_[slot_], tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
+  vk::uploadBuffer(context_, *shifts_[slot_], tables_.shifts.data(), tables_.shifts.size() * sizeof(glm::uvec4));
 }
 
 const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t slot) {
@@ -331,7 +291,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   info.triangles = lod.triangles;
   if (patches) info.patchLayout = lod.patchLayout;
   info.wireframe = settings_.wireframe;
-  info.waterDrawn = waterPipeline_ && settings_.water && !settings_.wireframe;
+  info.waterDrawn = water_ && settings_.water && !settings_.wireframe;
 
   // View: the mesh's local frame with the camera at its origin. The mesh's positions are offsets
   // from its anchor (radius · its nadir), and the camera it was chosen for sits at (0, 0,
@@ -380,8 +340,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
                         frame_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
   const glm::dvec3 sunLocal = glm::transpose(o.localToPlanet) * view.sunDirection;
   u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(gpu::kSunIrradiance * settings_.sunIntensity));
-  u.water = glm::vec4(float(planet_.water.clarityM), float(planet_.water.waveWavelengthM),
-                      frame_.waterDrawn ? 1.0f : 0.0f, 0.0f);
+  u.water = waterUniform(planet_.water, frame_.waterDrawn);
   if (ring_) {
     u.cameraPlanet = glm::vec4(glm::vec3(view.camera.position), 1.0f);
     u.ring = *ring_;
@@ -424,21 +383,10 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
         u.patchWrap[j / 2].w = wrap.y;
       }
     }
-    // Water waves: deep-water waves (ω² = g k) of falling wavelength in four directions; the
-    // phase at the reference point in double, so the pixel's float part stays small.
-    constexpr double kWaveScale[gpu::kWaterWaveCount] = {1.0, 0.61, 0.37, 0.23};
-    constexpr double kWaveAngle[gpu::kWaterWaveCount] = {0.3, 1.9, 3.7, 5.1};
-    constexpr double kWaveShare[gpu::kWaterWaveCount] = {0.4, 0.3, 0.2, 0.1};
-    for (uint32_t i = 0; i < gpu::kWaterWaveCount; ++i) {
-      const double k = 2.0 * std::numbers::pi / (planet_.water.waveWavelengthM * kWaveScale[i]);
-      const glm::dvec2 wave = k * glm::dvec2(std::cos(kWaveAngle[i]), std::sin(kWaveAngle[i]));
-      const double omega = std::sqrt(9.81 * k);
-      const double phase = wave.x * refA * planet_.radiusM + wave.y * refB * planet_.radiusM - omega * view.timeS;
-      u.waves[i] = glm::vec4(float(wave.x), float(wave.y), float(std::remainder(phase, 2.0 * std::numbers::pi)),
-                             float(kWaveShare[i]));
-    }
+    // The water's waves are phased at the same reference point.
+    writeWaves(u.waves, planet_.water, planet_.radiusM, refA, refB, view.timeS);
   }
-  vk::uploadBuffer(context_, uniforms_[slot_], &u, sizeof(u));
+  vk::uploadBuffer(context_, *uniforms_[slot_], &u, sizeof(u));
 }
 
 gpu::TerrainComputePush TerrainPass::heightPush() const {
@@ -466,7 +414,7 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   job.firstVertex = firstVertex;
   job.vertexCount = vertexCount;
   const VkDeviceSize vertices = mesh_.vertexCount();
-  const vk::Buffer& stagingBuffer = cpuStaging_[slot_];
+  const vk::Buffer& stagingBuffer = *cpuStaging_[slot_];
   glm::vec4* staging = static_cast<glm::vec4*>(stagingBuffer.mapped());
   const auto start = std::chrono::steady_clock::now();
   // The slot's previous copy out of this staging buffer has finished: its fence was waited for.
@@ -478,8 +426,8 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   const VkBufferCopy attributes[2] = {{(vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
                                       {(vertices + pole) * v4, pole * v4, v4}};
   context_.allocator.flush(stagingBuffer.allocation);
-  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, surface_.buffer, 2, surface);
-  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, attributes_.buffer, 2, attributes);
+  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, surface_->buffer, 2, surface);
+  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, attributes_->buffer, 2, attributes);
   // The normals pass reads the uploaded heights, the vertex shader the attributes.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
@@ -500,7 +448,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &sets_[slot_], 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
     gpu::TerrainComputePush push = heightPush();
     push.firstVertex = frame_.heightFirstRing * n;
     push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
@@ -508,8 +456,8 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (settings_.heightSource == HeightSource::Cpu) {
       recordCpuHeights(cmd, push.firstVertex, push.vertexCount);
     } else {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_);
-      vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_.get());
+      vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       vkCmdDispatch(cmd,
                     (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize,
                     1, 1);
@@ -519,8 +467,8 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     }
     push.firstVertex = frame_.rings.firstRing * n;
     push.vertexCount = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalsPipeline_);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalsPipeline_.get());
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(
         cmd, (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize, 1, 1);
     // The vertex shader reads positions, normals and attributes.
@@ -546,28 +494,24 @@ void TerrainPass::invalidatePatches() {
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frame_.wireframe ? wireframePipeline_ : fillPipeline_);
-  const VkPipelineLayout drawLayout = noiseDrawLayout_ ? noiseDrawLayout_ : layout_;
+  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipeline_;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
+  const VkPipelineLayout drawLayout = noiseDrawLayout_.get() ? noiseDrawLayout_.get() : layout_.get();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &sets_[slot_], 0, nullptr);
-  if (noiseDrawLayout_) {
+  if (noiseDrawLayout_.get()) {
     const gpu::TerrainComputePush push = heightPush();
-    vkCmdPushConstants(cmd, noiseDrawLayout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+    vkCmdPushConstants(cmd, drawLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
   }
-  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindIndexBuffer(cmd, indices_->buffer, 0, VK_INDEX_TYPE_UINT32);
   // Bands firstRing..lastRing−1, then the fan that closes ring lastRing at the pole.
   const IndexRange bands = mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing);
   if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
   const uint32_t n = settings_.mesh.numPhi;
-  const uint32_t fanFirst = mesh_.indexCount() + 3 * n * frame_.rings.lastRing;
-  vkCmdDrawIndexed(cmd, 3 * n, 1, fanFirst, 0, 0);
+  const IndexRange fan{mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 3 * n};
+  vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
   if (timer) timer->end(cmd);
-  if (frame_.waterDrawn) {
-    if (timer) timer->begin(cmd, "water");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, waterPipeline_);
-    if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
-    vkCmdDrawIndexed(cmd, 3 * n, 1, fanFirst, 0, 0);
-    if (timer) timer->end(cmd);
-  }
+  // The sea over it, with the set and index buffer bound above.
+  if (frame_.waterDrawn) water_->recordDraw(cmd, bands, fan, timer);
 }
 
 }  // namespace planet

@@ -18,9 +18,11 @@
 #include "planet/terrain_rebase.h"
 #include "camera/camera.h"
 #include "render/patch_layout.h"
+#include "render/water_pass.h"
 #include "shared/render_params.h"
 #include "shared/ring_params.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 class Context;
@@ -33,7 +35,8 @@ class PatchTextures;
 class SkyTables;
 
 // Where the vertex heights come from. Compute is the design; the others exist to measure it
-// against (planet bench --compare) and must draw the same picture.
+// against (planet bench --compare). They draw the same land; the vertex-shader mode draws no
+// water (tests/height_source_test.cpp holds both).
 enum class HeightSource {
   Compute,       // terrain_heights.comp, only in frames where the camera moved
   VertexShader,  // terrain_noise.vert: every drawn vertex and its four neighbours, every draw (seed 002)
@@ -108,6 +111,9 @@ struct TerrainView {
 
 class TerrainPass {
  public:
+  // Timing scopes a frame records at most: "heights", "patches", "terrain", and the water pass's.
+  static constexpr uint32_t kTimingScopes = 3 + WaterPass::kTimingScopes;
+
   // `sky` provides the transmittance table and sky irradiance the shading uses; it must outlive the pass.
   TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
               VkFormat colorFormat, VkFormat depthFormat, const SkyTables& sky);
@@ -127,7 +133,7 @@ class TerrainPass {
   // patch levels that moved. Call after prepare(), submitting in the order of the calls.
   void recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer);
   // The draw of the last prepared frame, inside a dynamic-rendering scope with the target's
-  // formats: the ground, then the water sphere over it (planets with an ocean).
+  // formats: the ground, then the water pass over it (planets with an ocean).
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   // Debug (the viewer): while frozen, prepare() keeps the orientation, rings, octave tables and
@@ -162,8 +168,8 @@ class TerrainPass {
   const OctaveTables& tables() const { return tables_; }
   const PlanetDescription& planet() const { return planet_; }
   // Per-vertex results of the compute passes (layouts in shaders/shared/render_params.h).
-  const vk::Buffer& surfaceBuffer() const { return surface_; }
-  const vk::Buffer& normalBuffer() const { return normals_; }
+  const vk::Buffer& surfaceBuffer() const { return *surface_; }
+  const vk::Buffer& normalBuffer() const { return *normals_; }
   // The maximum terrain height the horizon cut allows for (estimated once per planet).
   double maxTerrainHeightM() const { return maxTerrainHeightM_; }
   // The lowest surface a sight line can graze (m above the radius sphere): the sea level with a
@@ -186,7 +192,6 @@ class TerrainPass {
     PatchLayout patchLayout;   // chosen when the patch textures are first sampled for this LOD
   };
 
-  void release();
   // Creates what the current toggles need and does not exist yet: the draw pipeline of the
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
@@ -209,41 +214,42 @@ class TerrainPass {
   TerrainSettings settings_;
   VkFormat colorFormat_ = VK_FORMAT_UNDEFINED;
   VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
+  const SkyTables& sky_;
   ClipmapMesh mesh_;
-  std::unique_ptr<PlanetGpuData> data_;
-  std::unique_ptr<PatchTextures> patches_;
   bool fullPatches_ = false;  // patches_ has settings_.patchSettings (else a minimal stand-in that is never sampled)
   double maxTerrainHeightM_ = 0.0;
-  double lowestSurfaceM_ = 0.0;  // the horizon cut's grazed sphere, relative to the radius (<= 0)
+  double lowestSurfaceM_ = 0.0;          // the horizon cut's grazed sphere, relative to the radius (<= 0)
   std::optional<gpu::RingParams> ring_;  // setRingShadow
+  std::vector<double> ringSpacings_;     // HeightSource::Cpu: per ring and the pole (0: every octave)
 
-  vk::Buffer meshVertices_;
-  vk::Buffer indices_;  // the mesh's indices, then a fan to the pole for every ring
-  vk::Buffer surface_;
-  vk::Buffer normals_;
-  vk::Buffer attributes_;
-  vk::Buffer budgets_;
+  // The GPU objects, in the order of creation (destroyed in reverse).
+  std::unique_ptr<PlanetGpuData> data_;
+  std::unique_ptr<PatchTextures> patches_;
+  vk::Owned<vk::Buffer> meshVertices_;
+  vk::Owned<vk::Buffer> indices_;  // the mesh's indices, then a fan to the pole for every ring
+  vk::Owned<vk::Buffer> budgets_;
+  vk::Owned<vk::Buffer> surface_;
+  vk::Owned<vk::Buffer> normals_;
+  vk::Owned<vk::Buffer> attributes_;
   // Written by the CPU per frame: one host-visible copy per frame slot.
-  vk::Buffer remainders_[vk::kFramesInFlight];
-  vk::Buffer shifts_[vk::kFramesInFlight];
-  vk::Buffer uniforms_[vk::kFramesInFlight];
-  vk::Buffer cpuStaging_[vk::kFramesInFlight];  // HeightSource::Cpu: surface, then attributes, as the mesh's vertices
-  std::vector<double> ringSpacings_;            // HeightSource::Cpu: per ring and the pole (0: every octave)
-
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // each points at its slot's buffers
-  uint32_t slot_ = 0;                               // of the last prepare()
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline heightsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline normalsPipeline_ = VK_NULL_HANDLE;
+  vk::Owned<vk::Buffer> remainders_[vk::kFramesInFlight];
+  vk::Owned<vk::Buffer> shifts_[vk::kFramesInFlight];
+  vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
+  // HeightSource::Cpu: surface, then attributes, as the mesh's vertices.
+  vk::Owned<vk::Buffer> cpuStaging_[vk::kFramesInFlight];
+  vk::Owned<VkDescriptorSetLayout> setLayout_;
+  vk::Owned<VkDescriptorPool> pool_;
+  VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each points at its slot's buffers
+  vk::Owned<VkPipelineLayout> layout_;
+  vk::Owned<VkPipeline> heightsPipeline_;
+  vk::Owned<VkPipeline> normalsPipeline_;
+  vk::Owned<VkPipelineLayout> noiseDrawLayout_;  // HeightSource::VertexShader: push constants in the vertex stage
   // The draw, filled and as edges: the constructed mode's at once, the other on first use.
-  VkPipeline fillPipeline_ = VK_NULL_HANDLE;
-  VkPipeline wireframePipeline_ = VK_NULL_HANDLE;
-  VkPipeline waterPipeline_ = VK_NULL_HANDLE;  // planets with an ocean, except HeightSource::VertexShader
-  const SkyTables& sky_;
-  VkPipelineLayout noiseDrawLayout_ = VK_NULL_HANDLE;  // HeightSource::VertexShader: push constants in the vertex stage
+  vk::Owned<VkPipeline> fillPipeline_;
+  vk::Owned<VkPipeline> wireframePipeline_;
+  std::unique_ptr<WaterPass> water_;  // planets with an ocean, except HeightSource::VertexShader
 
+  uint32_t slot_ = 0;  // of the last prepare()
   TerrainFrameInfo frame_;
   bool freezeLod_ = false;
   std::optional<Lod> lod_;  // the last prepared frame's

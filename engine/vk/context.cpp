@@ -240,7 +240,7 @@ void createDevice(Context& context, const ContextOptions& options) {
   enable.features.fillModeNonSolid = supported.features.fillModeNonSolid;  // wireframe debug view
   enable.features.shaderFloat64 = supported.features.shaderFloat64;
   enable.features.samplerAnisotropy = supported.features.samplerAnisotropy;
-  enable.features.largePoints = supported.features.largePoints;  // star sprites wider than 1 px (render/starfield.h)
+  enable.features.largePoints = supported.features.largePoints;  // star sprites wider than 1 px (render/star_pass.h)
 
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &enable;

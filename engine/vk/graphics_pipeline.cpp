@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "vk/context.h"
+#include "vk/owned.h"
 #include "vk/pipeline.h"
 
 namespace planet::vk {
@@ -9,22 +10,17 @@ namespace planet::vk {
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
   if (desc.alphaBlend && desc.additiveBlend)
     throw Error("a graphics pipeline blends either alpha or additively, not both");
-  VkShaderModule vertex = createShaderModule(context, desc.vertexSpirv);
-  VkShaderModule fragment = VK_NULL_HANDLE;
-  try {
-    fragment = createShaderModule(context, desc.fragmentSpirv);
-  } catch (...) {
-    vkDestroyShaderModule(context.device, vertex, nullptr);
-    throw;
-  }
+  // Needed only while the pipeline is created: destroyed on return (or throw), fragment first.
+  const Owned<VkShaderModule> vertex(context, createShaderModule(context, desc.vertexSpirv));
+  const Owned<VkShaderModule> fragment(context, createShaderModule(context, desc.fragmentSpirv));
   VkPipelineShaderStageCreateInfo stages[2]{};
   stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vertex;
+  stages[0].module = vertex.get();
   stages[0].pName = "main";
   stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = fragment;
+  stages[1].module = fragment.get();
   stages[1].pName = "main";
 
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -92,8 +88,6 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
   info.layout = desc.layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkResult result = vkCreateGraphicsPipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-  vkDestroyShaderModule(context.device, fragment, nullptr);
-  vkDestroyShaderModule(context.device, vertex, nullptr);
   VK_CHECK(result);
   return pipeline;
 }

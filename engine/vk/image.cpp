@@ -93,6 +93,12 @@ void destroyImage(Context& context, Image& image) {
   image = Image{};
 }
 
+VkSampler createSampler(Context& context, const VkSamplerCreateInfo& info) {
+  VkSampler sampler = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateSampler(context.device, &info, nullptr, &sampler));
+  return sampler;
+}
+
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                      VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};

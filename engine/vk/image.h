@@ -34,6 +34,8 @@ Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, V
 // 2D-array view (for storage writes), `cubeView` the cube view (for samplerCube).
 Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage);
 void destroyImage(Context& context, Image& image);
+// A sampler (vk::Owned<VkSampler> destroys it).
+VkSampler createSampler(Context& context, const VkSamplerCreateInfo& info);
 
 // Records a layout transition of the whole image with a full barrier between the given stages.
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,

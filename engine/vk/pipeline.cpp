@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 
@@ -92,17 +93,18 @@ VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uin
 ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv,
                                       std::span<const VkDescriptorType> bindings, uint32_t pushConstantSize,
                                       std::span<const uint32_t> specialization, uint32_t maxSets) {
+  // Owned until all four exist: a throw destroys those created so far.
+  Owned<VkDescriptorSetLayout> setLayout(context, createSetLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT));
+  Owned<VkPipelineLayout> layout(
+      context, createPipelineLayout(context, setLayout.get(), pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT));
+  Owned<VkPipeline> pipeline(context, createComputePipelineWithLayout(context, spirv, layout.get(), specialization));
+  Owned<VkDescriptorPool> pool(context, createDescriptorPool(context, bindings, maxSets));
   ComputePipeline result;
   result.pushConstantSize = pushConstantSize;
-  try {
-    result.setLayout = createSetLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT);
-    result.layout = createPipelineLayout(context, result.setLayout, pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
-    result.pipeline = createComputePipelineWithLayout(context, spirv, result.layout, specialization);
-    result.descriptorPool = createDescriptorPool(context, bindings, maxSets);
-  } catch (...) {
-    destroyComputePipeline(context, result);
-    throw;
-  }
+  result.setLayout = setLayout.release();
+  result.layout = layout.release();
+  result.pipeline = pipeline.release();
+  result.descriptorPool = pool.release();
   return result;
 }
 

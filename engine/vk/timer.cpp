@@ -11,19 +11,18 @@ void GpuTimer::create(Context& context, uint32_t maxScopes) {
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
   info.queryCount = maxScopes * 2;
-  VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &pool_));
+  VkQueryPool pool = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &pool));
+  pool_ = {context, pool};
   maxScopes_ = maxScopes;
   periodNs_ = context.properties.limits.timestampPeriod;
   validMask_ = context.timestampValidBits >= 64 ? ~0ull : ((1ull << context.timestampValidBits) - 1);
 }
 
-void GpuTimer::destroy(Context& context) {
-  if (pool_) vkDestroyQueryPool(context.device, pool_, nullptr);
-  pool_ = VK_NULL_HANDLE;
-}
+void GpuTimer::destroy(Context&) { pool_.reset(); }
 
 void GpuTimer::reset(VkCommandBuffer cmd) {
-  vkCmdResetQueryPool(cmd, pool_, 0, maxScopes_ * 2);
+  vkCmdResetQueryPool(cmd, pool_.get(), 0, maxScopes_ * 2);
   names_.clear();
   open_ = UINT32_MAX;
 }
@@ -34,13 +33,13 @@ void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
   open_ = uint32_t(names_.size());
   names_.push_back(name);
   // Top of pipe: the scope starts when its commands could first start.
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_, open_ * 2);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_.get(), open_ * 2);
 }
 
 void GpuTimer::end(VkCommandBuffer cmd) {
   if (open_ == UINT32_MAX) throw Error("GPU timer end() without begin()");
   // Bottom of pipe: after every command recorded in the scope has finished.
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_, open_ * 2 + 1);
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_.get(), open_ * 2 + 1);
   open_ = UINT32_MAX;
 }
 
@@ -48,8 +47,9 @@ std::vector<GpuTiming> GpuTimer::results(Context& context) const {
   std::vector<GpuTiming> timings;
   if (names_.empty()) return timings;
   std::vector<uint64_t> stamps(names_.size() * 2);
-  VK_CHECK(vkGetQueryPoolResults(context.device, pool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
-                                 stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), 0, uint32_t(stamps.size()),
+                                 stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   for (size_t i = 0; i < names_.size(); ++i) {
     uint64_t ticks = (stamps[2 * i + 1] - stamps[2 * i]) & validMask_;
     uint64_t start = (stamps[2 * i] - stamps[0]) & validMask_;

@@ -8,6 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/owned.h"
+
 namespace planet::vk {
 
 class Context;
@@ -22,6 +24,7 @@ class GpuTimer {
  public:
   // Room for `maxScopes` scopes per recording. Throws if the device has no timestamps.
   void create(Context& context, uint32_t maxScopes = 32);
+  // Destroys the query pool now; the destructor does it otherwise.
   void destroy(Context& context);
 
   // Resets the queries; record once at the start of each command buffer that uses the timer.
@@ -34,7 +37,7 @@ class GpuTimer {
   std::vector<GpuTiming> results(Context& context) const;
 
  private:
-  VkQueryPool pool_ = VK_NULL_HANDLE;
+  Owned<VkQueryPool> pool_;
   uint32_t maxScopes_ = 0;
   double periodNs_ = 1.0;
   uint64_t validMask_ = ~0ull;

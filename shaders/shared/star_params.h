@@ -1,4 +1,4 @@
-// The starfield (engine/render/starfield.h): the star record that stars.comp writes and
+// The starfield (engine/render/star_pass.h): the star record that stars.comp writes and
 // stars.vert reads, the push constants of both, and the constants of the star model in
 // shaders/common/stars.glsl.
 #ifndef PLANET_SHARED_STAR_PARAMS_H

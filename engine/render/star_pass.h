@@ -1,8 +1,8 @@
-// The starfield (issue 4, point 4): a catalogue of stars generated once on the GPU from a seed
+// The star pass (issue 4, point 4): a catalogue of stars generated once on the GPU from a seed
 // (shaders/stars.comp; the model in shaders/common/stars.glsl), drawn each frame as additive
 // point sprites at infinity into the HDR colour target, first in the frame (the terrain and
-// everything nearer overwrites them). Fading by the sky's brightness belongs to the atmosphere
-// pass, which knows which pixels are background.
+// everything nearer overwrites them). Fading by the sky's brightness belongs to the sky pass
+// (sky_pass.h), which knows which pixels are background.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include "reference/star_catalogue.h"
 #include "shared/star_params.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 class Context;
@@ -29,15 +30,15 @@ inline constexpr float kStarReferenceHeightPx = 1080.0f;
 // float rounding in either test never drops a star the rasteriser would draw.
 inline constexpr double kStarCullMarginRad = 0.017453292519943295;
 
-class Starfield {
+class StarPass {
  public:
+  // Timing scopes a frame records at most: "star catalogue" (the first frame), "stars".
+  static constexpr uint32_t kTimingScopes = 2;
+
   // Validates the settings (validateStarSettings), creates the catalogue buffer and both
   // pipelines; the draw pipeline is compatible with a dynamic-rendering scope of colorFormat and
   // depthFormat (VK_FORMAT_UNDEFINED: none), neither tests nor writes depth, and adds to colour.
-  Starfield(vk::Context& context, const StarSettings& settings, VkFormat colorFormat, VkFormat depthFormat);
-  ~Starfield();
-  Starfield(const Starfield&) = delete;
-  Starfield& operator=(const Starfield&) = delete;
+  StarPass(vk::Context& context, const StarSettings& settings, VkFormat colorFormat, VkFormat depthFormat);
 
   // Records the catalogue's generation and the barrier that makes it visible to the vertex
   // shader (and to transfers and the host, for readCatalogue). Outside a rendering scope. The
@@ -63,14 +64,12 @@ class Starfield {
   // Stars the last recordDraw drew (all of them when culling is off).
   uint32_t drawnStarCount() const { return drawnStars_; }
   const StarSettings& settings() const { return settings_; }
-  const vk::Buffer& catalogueBuffer() const { return catalogue_; }
+  const vk::Buffer& catalogueBuffer() const { return *catalogue_; }
   // The largest point the device draws (a sprite is its star's diameter + kStarSpriteMargin):
   // 1 px without the largePoints feature, and then every star is a single plain pixel.
   float maxPointSize() const { return maxPointSize_; }
 
  private:
-  void release();
-
   vk::Context& context_;
   StarSettings settings_;
   float maxPointSize_ = 1.0f;
@@ -79,13 +78,14 @@ class Starfield {
   std::vector<StarTileCap> caps_;    // per sky tile
   std::vector<uint32_t> tileFirst_;  // kStarTileCount + 1 catalogue indices
 
-  vk::Buffer catalogue_;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline generatePipeline_ = VK_NULL_HANDLE;
-  VkPipeline drawPipeline_ = VK_NULL_HANDLE;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<vk::Buffer> catalogue_;
+  vk::Owned<VkDescriptorSetLayout> setLayout_;
+  vk::Owned<VkDescriptorPool> pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;  // from pool_
+  vk::Owned<VkPipelineLayout> layout_;
+  vk::Owned<VkPipeline> generatePipeline_;
+  vk::Owned<VkPipeline> drawPipeline_;
 };
 
 }  // namespace planet

@@ -1,4 +1,4 @@
-#include "render/starfield.h"
+#include "render/star_pass.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +27,7 @@ static_assert(sizeof(gpu::StarGeneratePush) <= sizeof(gpu::StarDrawPush));
 
 }  // namespace
 
-Starfield::Starfield(vk::Context& context, const StarSettings& settings, VkFormat colorFormat, VkFormat depthFormat)
+StarPass::StarPass(vk::Context& context, const StarSettings& settings, VkFormat colorFormat, VkFormat depthFormat)
     : context_(context), settings_(settings) {
   static_assert(gpu::kStarBindingCatalogue == 0);
   validateStarSettings(settings);
@@ -38,61 +38,40 @@ Starfield::Starfield(vk::Context& context, const StarSettings& settings, VkForma
   maxPointSize_ = features.largePoints ? std::max(1.0f, context.properties.limits.pointSizeRange[1]) : 1.0f;
   for (uint32_t t = 0; t < gpu::kStarTileCount; ++t) caps_.push_back(starTileCap(t));
   for (uint32_t t = 0; t <= gpu::kStarTileCount; ++t) tileFirst_.push_back(starTileFirstIndex(t, settings.count));
-  try {
-    catalogue_ = vk::createBuffer(context, VkDeviceSize(settings.count) * sizeof(gpu::StarRecord),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal);
-    setLayout_ = vk::createSetLayout(context, kBindingTypes, VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT);
-    pool_ = vk::createDescriptorPool(context, kBindingTypes, 1);
-    set_ = vk::allocateSet(context, pool_, setLayout_);
-    vk::writeBufferDescriptor(context, set_, gpu::kStarBindingCatalogue, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, catalogue_);
-    layout_ = vk::createPipelineLayout(context, setLayout_, sizeof(gpu::StarDrawPush), kPushStages);
-    generatePipeline_ = vk::createComputePipelineWithLayout(context, kSpv_stars_comp, layout_);
-    vk::GraphicsPipelineDesc desc;
-    desc.vertexSpirv = kSpv_stars_vert;
-    desc.fragmentSpirv = kSpv_stars_frag;
-    desc.layout = layout_;
-    desc.colorFormat = colorFormat;
-    desc.depthFormat = depthFormat;
-    desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-    desc.cullMode = VK_CULL_MODE_NONE;
-    // At infinity, drawn first: nothing to test against, and the terrain must not be hidden.
-    desc.depthTest = false;
-    desc.depthWrite = false;
-    desc.additiveBlend = true;
-    drawPipeline_ = vk::createGraphicsPipeline(context, desc);
-  } catch (...) {
-    release();
-    throw;
-  }
+  catalogue_ = {context, vk::createBuffer(context, VkDeviceSize(settings.count) * sizeof(gpu::StarRecord),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)};
+  setLayout_ = {context,
+                vk::createSetLayout(context, kBindingTypes, VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT)};
+  pool_ = {context, vk::createDescriptorPool(context, kBindingTypes, 1)};
+  set_ = vk::allocateSet(context, pool_.get(), setLayout_.get());
+  vk::writeBufferDescriptor(context, set_, gpu::kStarBindingCatalogue, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, *catalogue_);
+  layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::StarDrawPush), kPushStages)};
+  generatePipeline_ = {context, vk::createComputePipelineWithLayout(context, kSpv_stars_comp, layout_.get())};
+  vk::GraphicsPipelineDesc desc;
+  desc.vertexSpirv = kSpv_stars_vert;
+  desc.fragmentSpirv = kSpv_stars_frag;
+  desc.layout = layout_.get();
+  desc.colorFormat = colorFormat;
+  desc.depthFormat = depthFormat;
+  desc.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+  desc.cullMode = VK_CULL_MODE_NONE;
+  // At infinity, drawn first: nothing to test against, and the terrain must not be hidden.
+  desc.depthTest = false;
+  desc.depthWrite = false;
+  desc.additiveBlend = true;
+  drawPipeline_ = {context, vk::createGraphicsPipeline(context, desc)};
 }
 
-Starfield::~Starfield() { release(); }
-
-void Starfield::release() {
-  VkDevice device = context_.device;
-  if (drawPipeline_) vkDestroyPipeline(device, drawPipeline_, nullptr);
-  if (generatePipeline_) vkDestroyPipeline(device, generatePipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (pool_) vkDestroyDescriptorPool(device, pool_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  drawPipeline_ = generatePipeline_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
-  pool_ = VK_NULL_HANDLE;
-  set_ = VK_NULL_HANDLE;
-  setLayout_ = VK_NULL_HANDLE;
-  vk::destroyBuffer(context_, catalogue_);
-}
-
-void Starfield::recordGenerate(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+void StarPass::recordGenerate(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (generated_) return;
   if (timer) timer->begin(cmd, "star catalogue");
   gpu::StarGeneratePush push{};
   push.count = settings_.count;
   push.seed = settings_.seed;
   push.faintestMagnitude = settings_.faintestMagnitude;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, generatePipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(push), &push);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, generatePipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0, nullptr);
+  vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, (settings_.count + gpu::kStarWorkgroupSize - 1) / gpu::kStarWorkgroupSize, 1, 1);
   // Every later draw's vertex shader reads the catalogue; readCatalogue copies or maps it.
   vk::memoryBarrier(
@@ -103,9 +82,9 @@ void Starfield::recordGenerate(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   generated_ = true;
 }
 
-void Starfield::recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip, float viewportHeightPx,
-                           vk::GpuTimer* timer) {
-  if (!generated_) throw Error("Starfield::recordDraw before recordGenerate: the catalogue does not exist yet");
+void StarPass::recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip, float viewportHeightPx,
+                          vk::GpuTimer* timer) {
+  if (!generated_) throw Error("StarPass::recordDraw before recordGenerate: the catalogue does not exist yet");
   if (!(std::isfinite(viewportHeightPx) && viewportHeightPx > 0.0f))
     throw Error(fmt::format("star viewport height {} px is not a positive number", viewportHeightPx));
   if (timer) timer->begin(cmd, "stars");
@@ -114,9 +93,9 @@ void Starfield::recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip
   push.brightness = settings_.brightness;
   push.pixelScale = std::max(1.0f, viewportHeightPx / kStarReferenceHeightPx);
   push.maxPointSize = maxPointSize_;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdPushConstants(cmd, layout_, kPushStages, 0, sizeof(push), &push);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0, nullptr);
+  vkCmdPushConstants(cmd, layout_.get(), kPushStages, 0, sizeof(push), &push);
   // A direction d is inside the view when w ≥ |x| and w ≥ |y| for (x, y, _, w) = M·(d, 0): four
   // half-spaces n·d ≥ 0 with n = row w ± row x, row w ± row y. A cap of radius r around axis a
   // reaches into {n·d ≥ 0} when the angle between a and n is below 90° + r.
@@ -153,10 +132,10 @@ void Starfield::recordDraw(VkCommandBuffer cmd, const glm::mat4& directionToClip
   if (timer) timer->end(cmd);
 }
 
-std::vector<gpu::StarRecord> Starfield::readCatalogue() {
-  if (!generated_) throw Error("Starfield::readCatalogue before recordGenerate: the catalogue does not exist yet");
+std::vector<gpu::StarRecord> StarPass::readCatalogue() {
+  if (!generated_) throw Error("StarPass::readCatalogue before recordGenerate: the catalogue does not exist yet");
   std::vector<gpu::StarRecord> stars(settings_.count);
-  vk::readbackBuffer(context_, catalogue_, stars.data(), stars.size() * sizeof(gpu::StarRecord));
+  vk::readbackBuffer(context_, *catalogue_, stars.data(), stars.size() * sizeof(gpu::StarRecord));
   return stars;
 }
 

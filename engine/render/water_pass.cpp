@@ -1,0 +1,55 @@
+#include "render/water_pass.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "spv/water.frag.h"
+#include "spv/water.vert.h"
+#include "vk/context.h"
+#include "vk/graphics_pipeline.h"
+#include "vk/timer.h"
+
+namespace planet {
+
+WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat) {
+  vk::GraphicsPipelineDesc desc;
+  desc.layout = layout;
+  desc.vertexSpirv = kSpv_water_vert;
+  desc.fragmentSpirv = kSpv_water_frag;
+  desc.colorFormat = colorFormat;
+  desc.depthFormat = depthFormat;
+  desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // as the ground's (TerrainPass::createDrawPipeline)
+  // The sea over the ground: premultiplied "over" blending, depth tested and written.
+  desc.alphaBlend = true;
+  desc.premultipliedAlpha = true;
+  pipeline_ = {context, vk::createGraphicsPipeline(context, desc)};
+}
+
+void WaterPass::recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const IndexRange& fan, vk::GpuTimer* timer) {
+  if (timer) timer->begin(cmd, "water");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
+  vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
+  if (timer) timer->end(cmd);
+}
+
+glm::vec4 waterUniform(const WaterDescription& water, bool drawn) {
+  return glm::vec4(float(water.clarityM), float(water.waveWavelengthM), drawn ? 1.0f : 0.0f, 0.0f);
+}
+
+void writeWaves(glm::vec4 (&waves)[gpu::kWaterWaveCount], const WaterDescription& water, double radiusM, double refA,
+                double refB, double timeS) {
+  constexpr double kWaveScale[gpu::kWaterWaveCount] = {1.0, 0.61, 0.37, 0.23};
+  constexpr double kWaveAngle[gpu::kWaterWaveCount] = {0.3, 1.9, 3.7, 5.1};
+  constexpr double kWaveShare[gpu::kWaterWaveCount] = {0.4, 0.3, 0.2, 0.1};
+  for (uint32_t i = 0; i < gpu::kWaterWaveCount; ++i) {
+    const double k = 2.0 * std::numbers::pi / (water.waveWavelengthM * kWaveScale[i]);
+    const glm::dvec2 wave = k * glm::dvec2(std::cos(kWaveAngle[i]), std::sin(kWaveAngle[i]));
+    const double omega = std::sqrt(9.81 * k);
+    const double phase = wave.x * refA * radiusM + wave.y * refB * radiusM - omega * timeS;
+    waves[i] = glm::vec4(float(wave.x), float(wave.y), float(std::remainder(phase, 2.0 * std::numbers::pi)),
+                         float(kWaveShare[i]));
+  }
+}
+
+}  // namespace planet

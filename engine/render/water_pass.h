@@ -1,0 +1,53 @@
+// The water pass (issue 4, point 1): the sea of a planet with an ocean, the clipmap mesh drawn
+// again at sea level (shaders/water.vert) right after the ground, so that the coastline is the
+// intersection of two surfaces over the same triangles. Shading (shaders/water.frag): Fresnel
+// reflection of the sky, the sun's glint off small animated waves, light scattered up from the
+// water body, and transparency from the depth under the pixel; blended premultiplied "over" the
+// ground, depth tested and written. It reads the terrain pass's descriptor set (frame uniforms,
+// the vertex buffers the height pass fills, the patch textures), so the terrain pass owns it.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "planet/clipmap_mesh.h"
+#include "planet/planet_description.h"
+#include "shared/render_params.h"
+#include "vk/owned.h"
+
+namespace planet::vk {
+class Context;
+class GpuTimer;
+}  // namespace planet::vk
+
+namespace planet {
+
+class WaterPass {
+ public:
+  // Timing scopes a frame records at most: "water".
+  static constexpr uint32_t kTimingScopes = 1;
+
+  // A pipeline over the terrain pass's `layout`, for a dynamic-rendering scope of colorFormat and
+  // depthFormat.
+  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat);
+
+  // Records the draw of the ground's index ranges (the bands, then the fan that closes the mesh at
+  // the pole) with the terrain's descriptor set and index buffer still bound.
+  void recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const IndexRange& fan, vk::GpuTimer* timer);
+
+ private:
+  vk::Owned<VkPipeline> pipeline_;
+};
+
+// The water's values in the terrain pass's frame uniforms, for every planet (the ground's shader
+// reads whether the sea is drawn): FrameUniforms::water.
+glm::vec4 waterUniform(const WaterDescription& water, bool drawn);
+// FrameUniforms::waves: deep-water waves (ω² = g k) of falling wavelength in four directions,
+// with their phase at the patch reference point (face coordinates refA, refB) computed in double
+// so that the pixel's float part stays small.
+void writeWaves(glm::vec4 (&waves)[gpu::kWaterWaveCount], const WaterDescription& water, double radiusM, double refA,
+                double refB, double timeS);
+
+}  // namespace planet
