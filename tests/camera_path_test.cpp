@@ -1,8 +1,6 @@
 // Camera paths (issue 6, point 5): strict parsing with one-line errors naming the file, line and
 // value; interpolation geometric in height, along the great circle in position, the short way
 // round in heading; the default benchmark path.
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -164,8 +162,7 @@ TEST(CameraPath, HostileTextParsesOrGivesOneShortLineNamingTheLineAndValue) {
 
 // The file front door: missing, a directory, empty, over the 4 MiB limit.
 TEST(CameraPath, UnreadableAndOversizedFilesAreOneLineNamingThePath) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("planet_camera_path_files_" + std::to_string(::getpid()));
+  const TempDir dir("camera_path_files");
   std::filesystem::create_directories(dir / "sub.path");
   const std::string missing = (dir / "missing.path").string();
   EXPECT_EQ(errorOf([&] { loadCameraPath(missing); }), "cannot read '" + missing + "': No such file or directory");
@@ -177,7 +174,6 @@ TEST(CameraPath, UnreadableAndOversizedFilesAreOneLineNamingThePath) {
   const std::string big = (dir / "big.path").string();
   std::ofstream(big) << std::string((size_t(4) << 20) + 1, '#');
   EXPECT_EQ(errorOf([&] { loadCameraPath(big); }), big + ": larger than 4194304 bytes");
-  std::filesystem::remove_all(dir);
 }
 
 TEST(CameraPath, ValidationOfPathsBuiltInCodeNamesTheKey) {
@@ -189,7 +185,8 @@ TEST(CameraPath, ValidationOfPathsBuiltInCodeNamesTheKey) {
 }
 
 TEST(CameraPath, LoadsFilesAndNamesMissingOnes) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "planet_camera_path_test.txt";
+  const TempDir dir("camera_path_test");
+  const std::filesystem::path file = dir / "path.txt";
   std::ofstream(file) << "0 1 2 3 4 5\n10 1 2 30 4 5\n";
   EXPECT_EQ(loadCameraPath(file.string()).keys.size(), 2u);
   std::ofstream(file) << "0 1 2 3 4 5\nten 1 2 30 4 5\n";

@@ -253,9 +253,7 @@ TEST(ExportHeightmap, SizesOutsideTheLimitsAreRefusedNamingTheSize) {
 }
 
 TEST(ExportHeightmap, TheImageAndItsSidecarAreWrittenTogetherOrNotAtAll) {
-  const fs::path dir = test::processTempDir("export_test") / "write";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::TempDir dir("export_test");
   const Heightmap map = computeHeightmap(earth(), equirectSpec(8, 4));
   const std::string path = (dir / "map.png").string();
   writeHeightmap(path, earth(), {"earth", 0}, map, HeightmapEncoding::Png16);
@@ -272,15 +270,14 @@ TEST(ExportHeightmap, TheImageAndItsSidecarAreWrittenTogetherOrNotAtAll) {
             }).find("cannot write '" + second + ".json'"),
             std::string::npos);
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(dir.path())) names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"map.png", "map.png.json", "second.raw.json"}));
   // A missing directory for a later file: the earlier file's temporary is removed too.
   const FileContents files[] = {{(dir / "a.txt").string(), "a"}, {(dir / "missing" / "b.txt").string(), "b"}};
   EXPECT_NE(errorOf([&] { writeFilesAtomic(files); }).find("missing/b.txt"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "a.txt"));
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
-  fs::remove_all(dir);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 3);
 }
 
 // ---- Meshes ----------------------------------------------------------------------------------

@@ -17,6 +17,12 @@ std::unique_ptr<vk::Context> createTestContext(vk::ContextOptions options) {
   }
 }
 
+std::filesystem::path testOutputDir() {
+  const std::filesystem::path dir = PLANET_TEST_OUTPUT_DIR;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 void GpuTest::SetUp() {
   context_ = createTestContext();
   if (!context_) GTEST_SKIP() << "no Vulkan device on this machine";

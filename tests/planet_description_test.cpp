@@ -427,9 +427,7 @@ TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
   EXPECT_EQ(errorOf([] { resolvePreset("venus"); }),
             "unknown planet preset 'venus' (built-in: earth, moon, mars, giant; or a FILE.toml)");
 
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("planet_description_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir dir("description_test");
   auto write = [&](const std::string& fileName, const std::string& text) {
     std::string path = (dir / fileName).string();
     std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -453,7 +451,6 @@ TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
             "cannot read 'no_such_planet.toml': No such file or directory");
   EXPECT_EQ(errorOf([&] { loadPlanetDescription(dir.string()); }),
             "cannot read '" + dir.string() + "': Is a directory");
-  std::filesystem::remove_all(dir);
 }
 
 // Hostile preset text (issue 7): one case per kind of bad input. Each is a planet::Error with
@@ -566,8 +563,7 @@ TEST(PlanetDescription, HostileTextGivesOneShortLineNamingTheProblem) {
 
 // The file front door: what cannot be read is one line naming the path and the reason.
 TEST(PlanetDescription, UnreadableFilesAreOneLineNamingThePath) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("planet_description_files_" + std::to_string(::getpid()));
+  const test::TempDir dir("description_files");
   std::filesystem::create_directories(dir / "sub.toml");
   const std::string missing = (dir / "missing.toml").string();
   EXPECT_EQ(errorOf([&] { loadPlanetDescription(missing); }),
@@ -592,7 +588,6 @@ TEST(PlanetDescription, UnreadableFilesAreOneLineNamingThePath) {
     std::filesystem::permissions(locked, std::filesystem::perms::none);
     EXPECT_EQ(errorOf([&] { loadPlanetDescription(locked); }), "cannot read '" + locked + "': Permission denied");
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST(PlanetDescription, DescriptionHashIsStableAndSeesEveryChange) {

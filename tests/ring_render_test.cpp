@@ -238,11 +238,7 @@ Rgba8Image tonemap(const Frame& frame, double exposure) {
   return image;
 }
 
-std::filesystem::path outputDir() {
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "planet_ring_out";
-  std::filesystem::create_directories(out);
-  return out;
-}
+std::filesystem::path outputDir() { return testOutputDir(); }
 
 void expectFinite(const Frame& frame) {
   for (const glm::vec4& p : frame.pixels)

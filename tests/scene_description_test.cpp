@@ -6,13 +6,12 @@
 #include <numbers>
 #include <string>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "planet/orbit.h"
 #include "planet/scene_description.h"
+#include "test_support.h"
 
 namespace planet {
 namespace {
@@ -185,8 +184,7 @@ TEST(Scene, BadInputIsOneLineNamingTheFileLineAndValue) {
 }
 
 TEST(Scene, PresetFilesAreReadRelativeToTheSceneFile) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("planet_scene_test_" + std::to_string(getpid()));
+  const test::TempDir dir("scene_test");
   std::filesystem::create_directories(dir / "worlds");
   // A copy of the moon preset under another name, next to the scene.
   std::string moon;
@@ -198,7 +196,6 @@ TEST(Scene, PresetFilesAreReadRelativeToTheSceneFile) {
   std::ofstream(dir / "scene.toml") << scene;
   const SceneDescription s = loadSceneDescription((dir / "scene.toml").string());
   EXPECT_EQ(s.bodies[0].planet.name, "Moon");
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -268,8 +268,7 @@ TEST_F(StarfieldGpu, StarsAloneLookLikeAStarrySky) {
   // A few bright stars among many faint ones.
   EXPECT_GT(brightest, 50.0 * medianLit);
 
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "planet_star_out";
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = testOutputDir();
   writePng((out / "stars_256.png").string(), tonemap(frame, 8.0));
   std::printf("picture: %s\n", (out / "stars_256.png").c_str());
 }
@@ -356,8 +355,7 @@ TEST_F(StarfieldGpu, TileCullingChangesNoPixelAndSkipsMostStars) {
     const Frame withCulling = renderStars(context(), a, 192, 192, toClip);
     const Frame without = renderStars(context(), b, 192, 192, toClip);
     EXPECT_EQ(withCulling.bytes, without.bytes) << v.fovYDeg << "°";
-    const std::filesystem::path out = std::filesystem::temp_directory_path() / "planet_star_out";
-    std::filesystem::create_directories(out);
+    const std::filesystem::path out = testOutputDir();
     writePng((out / ("stars_view" + std::to_string(&v - views) + ".png")).string(), tonemap(withCulling, 8.0));
     EXPECT_EQ(b.drawnStarCount(), everything.count);
     // Stars in view: the share of the sky the square view covers, 4 asin(sin²(fov/2)) / 4π.

@@ -4,11 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
+#include <system_error>
 
 #include "core/error.h"
 
@@ -32,12 +36,45 @@ inline std::string readFileBytes(const std::filesystem::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// This test process's folder for its files, /tmp/planet_NAME_PID, made on first use.
-inline std::filesystem::path processTempDir(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("planet_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+// A fresh folder of the test's own in the system's temporary directory ($TMPDIR, else /tmp),
+// planet_NAME_PID_XXXXXX, removed with everything in it when the object is destroyed. Cleanup
+// lives in the destructor because a failed ASSERT returns from the test body early, past any
+// remove_all at its end.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name) {
+    std::string pattern = (std::filesystem::temp_directory_path() /
+                           ("planet_" + name + "_" + std::to_string(::getpid()) + "_XXXXXX"))
+                              .string();
+    if (!::mkdtemp(pattern.data()))
+      throw std::filesystem::filesystem_error("cannot make a temporary folder", pattern,
+                                              std::error_code(errno, std::generic_category()));
+    path_ = pattern;
+  }
+  ~TempDir() {
+    if (::getpid() != owner_) return;  // a forked child must not remove its parent's folder
+    std::error_code error;
+    std::filesystem::remove_all(path_, error);
+    if (error) std::fprintf(stderr, "cannot remove %s: %s\n", path_.c_str(), error.message().c_str());
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::filesystem::path& name) const { return path_ / name; }
+  std::string string() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+  pid_t owner_ = ::getpid();
+};
+
+// This test program's folder NAME for its files (a TempDir), made on first use and removed when
+// the program exits, pass or fail. CTest runs every test in a process of its own, so there it
+// is one folder per test.
+inline const std::filesystem::path& processTempDir(const std::string& name) {
+  static std::map<std::string, TempDir> dirs;
+  return dirs.try_emplace(name, name).first->second.path();
 }
 
 struct ShellRun {
