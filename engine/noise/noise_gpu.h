@@ -10,6 +10,7 @@
 
 #include "noise/noise_settings.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 #include "vk/pipeline.h"
 #include "vk/timer.h"
 
@@ -22,7 +23,6 @@ namespace planet::noise {
 class GpuNoise {
  public:
   explicit GpuNoise(vk::Context& context);
-  ~GpuNoise();
   GpuNoise(const GpuNoise&) = delete;
   GpuNoise& operator=(const GpuNoise&) = delete;
 
@@ -42,20 +42,20 @@ class GpuNoise {
   void evaluate(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out);
 
  private:
-  void release();
   void uploadPermutation(uint32_t seed);
   // The pipeline specialised for this type and hash, created on first use.
   const vk::ComputePipeline& pipelineFor(NoiseType type, NoiseHash hash);
 
   vk::Context& context_;
+  // In the order of creation (destroyed in reverse).
   // Keyed by (type, hash). All share one descriptor set layout definition, so the set
   // allocated from the default pipeline's pool binds to every one of them.
-  std::map<std::pair<uint32_t, uint32_t>, vk::ComputePipeline> pipelines_;
+  std::map<std::pair<uint32_t, uint32_t>, vk::Owned<vk::ComputePipeline>> pipelines_;
   const vk::ComputePipeline& setOwner() const;
   vk::GpuTimer timer_;
-  vk::Buffer points_;
-  vk::Buffer values_;
-  vk::Buffer permutation_;
+  vk::Owned<vk::Buffer> permutation_;
+  vk::Owned<vk::Buffer> points_;  // points_ and values_: replaced when the points outgrow them
+  vk::Owned<vk::Buffer> values_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   size_t capacity_ = 0;  // points the buffers can hold
   size_t count_ = 0;     // points set

@@ -29,38 +29,25 @@ bool hasCraterLayer(const PlanetDescription& planet) {
                      [](const NoiseLayer& layer) { return layer.noise.type == noise::NoiseType::Craters; });
 }
 
-PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet)
-    : context_(context), planet_(planet) {
+PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet) : planet_(planet) {
   if (planet.layers.size() > gpu::kTerrainMaxLayers)
     throw Error(fmt::format("planet '{}' has {} layers; the GPU terrain holds at most {}", planet.name,
                             planet.layers.size(), gpu::kTerrainMaxLayers));
-  try {
-    std::vector<gpu::TerrainLayer> layers(gpu::kTerrainMaxLayers, gpu::TerrainLayer{});
-    std::vector<uint32_t> permutations(size_t(gpu::kTerrainMaxLayers) * gpu::kNoisePermutationSize, 0u);
-    for (size_t l = 0; l < planet.layers.size(); ++l) {
-      layers[l].noise = noise::toNoiseParams(planet.layers[l].noise);
-      layers[l].amplitudeM = float(planet.layers[l].amplitudeM);
-      const noise::PermutationTable& table = noise::permutationTable(planet.layers[l].noise.seed);
-      std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
-    }
-    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    layers_ =
-        vk::createBuffer(context_, layers.size() * sizeof(gpu::TerrainLayer), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context_, layers_, layers.data(), layers.size() * sizeof(gpu::TerrainLayer));
-    permutations_ =
-        vk::createBuffer(context_, permutations.size() * sizeof(uint32_t), storage, vk::MemoryUsage::DeviceLocal);
-    vk::uploadBuffer(context_, permutations_, permutations.data(), permutations.size() * sizeof(uint32_t));
-  } catch (...) {
-    release();
-    throw;
+  std::vector<gpu::TerrainLayer> layers(gpu::kTerrainMaxLayers, gpu::TerrainLayer{});
+  std::vector<uint32_t> permutations(size_t(gpu::kTerrainMaxLayers) * gpu::kNoisePermutationSize, 0u);
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    layers[l].noise = noise::toNoiseParams(planet.layers[l].noise);
+    layers[l].amplitudeM = float(planet.layers[l].amplitudeM);
+    const noise::PermutationTable& table = noise::permutationTable(planet.layers[l].noise.seed);
+    std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
   }
-}
-
-PlanetGpuData::~PlanetGpuData() { release(); }
-
-void PlanetGpuData::release() {
-  vk::destroyBuffer(context_, permutations_);
-  vk::destroyBuffer(context_, layers_);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  layers_ = {context, vk::createBuffer(context, layers.size() * sizeof(gpu::TerrainLayer), storage,
+                                       vk::MemoryUsage::DeviceLocal)};
+  vk::uploadBuffer(context, *layers_, layers.data(), layers.size() * sizeof(gpu::TerrainLayer));
+  permutations_ = {context, vk::createBuffer(context, permutations.size() * sizeof(uint32_t), storage,
+                                             vk::MemoryUsage::DeviceLocal)};
+  vk::uploadBuffer(context, *permutations_, permutations.data(), permutations.size() * sizeof(uint32_t));
 }
 
 }  // namespace planet

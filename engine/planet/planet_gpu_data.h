@@ -8,6 +8,7 @@
 
 #include "planet/planet_description.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 class Context;
@@ -29,21 +30,18 @@ class PlanetGpuData {
  public:
   // Throws planet::Error if the planet has more layers than the shaders hold.
   PlanetGpuData(vk::Context& context, const PlanetDescription& planet);
-  ~PlanetGpuData();
   PlanetGpuData(const PlanetGpuData&) = delete;
   PlanetGpuData& operator=(const PlanetGpuData&) = delete;
 
   const PlanetDescription& planet() const { return planet_; }
-  const vk::Buffer& layers() const { return layers_; }              // gpu::TerrainLayer[kTerrainMaxLayers]
-  const vk::Buffer& permutations() const { return permutations_; }  // uint[kTerrainMaxLayers * kNoisePermutationSize]
+  const vk::Buffer& layers() const { return *layers_; }              // gpu::TerrainLayer[kTerrainMaxLayers]
+  const vk::Buffer& permutations() const { return *permutations_; }  // uint[kTerrainMaxLayers * kNoisePermutationSize]
 
  private:
-  void release();
-
-  vk::Context& context_;
   PlanetDescription planet_;
-  vk::Buffer layers_;
-  vk::Buffer permutations_;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<vk::Buffer> layers_;
+  vk::Owned<vk::Buffer> permutations_;
 };
 
 }  // namespace planet

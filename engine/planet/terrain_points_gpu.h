@@ -12,6 +12,7 @@
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_rebase.h"
 #include "vk/buffer.h"
+#include "vk/owned.h"
 #include "vk/pipeline.h"
 
 namespace planet::vk {
@@ -24,7 +25,6 @@ class GpuTerrainPoints {
  public:
   // Throws planet::Error if the planet has more layers than the shader holds.
   GpuTerrainPoints(vk::Context& context, const PlanetDescription& planet);
-  ~GpuTerrainPoints();
   GpuTerrainPoints(const GpuTerrainPoints&) = delete;
   GpuTerrainPoints& operator=(const GpuTerrainPoints&) = delete;
 
@@ -32,14 +32,13 @@ class GpuTerrainPoints {
   std::vector<float> evaluate(const OctaveTables& tables, std::span<const glm::vec3> offsetsM);
 
  private:
-  void release();
-
   vk::Context& context_;
   PlanetDescription planet_;
+  // In the order of creation (destroyed in reverse).
   PlanetGpuData data_;
-  vk::ComputePipeline pipeline_;
-  vk::Buffer remainders_;
-  vk::Buffer shifts_;
+  vk::Owned<vk::ComputePipeline> pipeline_;
+  vk::Owned<vk::Buffer> remainders_;
+  vk::Owned<vk::Buffer> shifts_;
 };
 
 }  // namespace planet

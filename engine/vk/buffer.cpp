@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "vk/commands.h"
 #include "vk/context.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 namespace {
@@ -25,21 +26,17 @@ void checkFrameSlot(uint32_t slot) {
 
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory) {
   if (size == 0) throw Error("cannot create a buffer of 0 bytes");
-  Buffer buffer;
-  buffer.size = size;
+  // Owned until complete: a failed allocation destroys the VkBuffer.
+  Owned<Buffer> buffer(context, Buffer{});
+  buffer->size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   // Transfer usage always: any buffer can be uploaded to or read back through staging.
   info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  VK_CHECK(vkCreateBuffer(context.device, &info, nullptr, &buffer.buffer));
-  try {
-    buffer.allocation = context.allocator.allocateForBuffer(buffer.buffer, memory);
-  } catch (...) {
-    vkDestroyBuffer(context.device, buffer.buffer, nullptr);
-    throw;
-  }
-  return buffer;
+  VK_CHECK(vkCreateBuffer(context.device, &info, nullptr, &buffer->buffer));
+  buffer->allocation = context.allocator.allocateForBuffer(buffer->buffer, memory);
+  return buffer.release();
 }
 
 void destroyBuffer(Context& context, Buffer& buffer) {
@@ -56,12 +53,12 @@ void uploadBuffer(Context& context, Buffer& buffer, const void* data, VkDeviceSi
     context.allocator.flush(buffer.allocation);
     return;
   }
-  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
-  std::memcpy(staging.buffer.mapped(), data, bytes);
-  context.allocator.flush(staging.buffer.allocation);
+  const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
+  std::memcpy(staging->mapped(), data, bytes);
+  context.allocator.flush(staging->allocation);
   submitAndWait(context, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, offset, bytes};
-    vkCmdCopyBuffer(cmd, staging.buffer.buffer, buffer.buffer, 1, &region);
+    vkCmdCopyBuffer(cmd, staging->buffer, buffer.buffer, 1, &region);
     // Later submissions may read the data in any stage; the fence wait orders the rest.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
@@ -76,19 +73,19 @@ void readbackBuffer(Context& context, const Buffer& buffer, void* data, VkDevice
     std::memcpy(data, static_cast<const char*>(buffer.mapped()) + offset, bytes);
     return;
   }
-  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
+  const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
   submitAndWait(context, [&](VkCommandBuffer cmd) {
     // Earlier submissions' writes must be visible to the copy.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferCopy region{offset, 0, bytes};
-    vkCmdCopyBuffer(cmd, buffer.buffer, staging.buffer.buffer, 1, &region);
+    vkCmdCopyBuffer(cmd, buffer.buffer, staging->buffer, 1, &region);
     // Make the copy visible to the host read below.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_HOST_READ_BIT);
   });
-  context.allocator.invalidate(staging.buffer.allocation);
-  std::memcpy(data, staging.buffer.mapped(), bytes);
+  context.allocator.invalidate(staging->allocation);
+  std::memcpy(data, staging->mapped(), bytes);
 }
 
 }  // namespace planet::vk

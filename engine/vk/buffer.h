@@ -31,7 +31,8 @@ Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usag
 void destroyBuffer(Context& context, Buffer& buffer);
 
 // Owns a temporary buffer (staging, scratch) and destroys it when leaving scope, also when an
-// exception passes through.
+// exception passes through. The engine uses vk::Owned<Buffer> (owned.h) for this; ScopedBuffer
+// stays for the tests written against it.
 struct ScopedBuffer {
   Context& context;
   Buffer buffer;

@@ -1,5 +1,6 @@
 // One-shot command submission: record with a callback, submit, wait. For uploads, readbacks
-// and headless work; the viewer's frame ring (later) reuses its own pools instead.
+// and headless work; the frame ring (frame_ring.h) reuses its own pool instead. Also the plain
+// creation of the objects both need (vk::Owned destroys them).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,13 @@ class Context;
 
 // How long submitAndWait waits for the GPU before treating it as hung (VK_ERROR_DEVICE_LOST).
 inline constexpr uint64_t kSubmitTimeoutNs = 120ull * 1000 * 1000 * 1000;
+
+// A command pool on the universal queue family.
+VkCommandPool createCommandPool(Context& context, VkCommandPoolCreateFlags flags);
+// An unsignalled fence.
+VkFence createFence(Context& context);
+// A binary semaphore.
+VkSemaphore createSemaphore(Context& context);
 
 // Records `record` into a fresh primary command buffer on the universal queue, submits it
 // and blocks until it completes. Throws planet::VulkanError on failure or timeout.

@@ -8,6 +8,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/buffer.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 
@@ -38,14 +39,14 @@ class FrameRing {
 
  private:
   void submitWith(uint32_t slot, const VkSemaphoreSubmitInfo* wait, const VkSemaphoreSubmitInfo* signal);
-  void release();
 
   Context& context_;
-  VkCommandPool pool_ = VK_NULL_HANDLE;
-  VkCommandBuffer cmd_[kFramesInFlight] = {};
-  VkFence fences_[kFramesInFlight] = {};
-  VkSemaphore acquired_[kFramesInFlight] = {};
   bool submitted_[kFramesInFlight] = {};
+  // In the order of creation (destroyed in reverse).
+  Owned<VkCommandPool> pool_;
+  VkCommandBuffer cmd_[kFramesInFlight] = {};  // from pool_
+  Owned<VkFence> fences_[kFramesInFlight];
+  Owned<VkSemaphore> acquired_[kFramesInFlight];
 };
 
 }  // namespace planet::vk

@@ -7,6 +7,7 @@
 #include "vk/buffer.h"
 #include "vk/commands.h"
 #include "vk/context.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 
@@ -33,10 +34,11 @@ namespace {
 Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
                   VkImageViewType viewType, bool cube = false) {
   if (extent.width == 0 || extent.height == 0 || layers == 0) throw Error("cannot create an image of size 0");
-  Image image;
-  image.format = format;
-  image.extent = extent;
-  image.layers = layers;
+  // Owned until complete: a throw destroys what was created so far.
+  Owned<Image> image(context, Image{});
+  image->format = format;
+  image->extent = extent;
+  image->layers = layers;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
@@ -48,26 +50,21 @@ Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat
   info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   if (cube) info.flags = VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
-  VK_CHECK(vkCreateImage(context.device, &info, nullptr, &image.image));
-  try {
-    image.allocation = context.allocator.allocateForImage(image.image, MemoryUsage::DeviceLocal, ResourceKind::Optimal);
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = image.image;
-    viewInfo.viewType = viewType;
-    viewInfo.format = format;
-    bool depth = format == VK_FORMAT_D32_SFLOAT;
-    viewInfo.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
-                                 1, 0, layers};
-    VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.view));
-    if (cube) {
-      viewInfo.viewType = VK_IMAGE_VIEW_TYPE_CUBE;
-      VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image.cubeView));
-    }
-  } catch (...) {
-    destroyImage(context, image);
-    throw;
+  VK_CHECK(vkCreateImage(context.device, &info, nullptr, &image->image));
+  image->allocation = context.allocator.allocateForImage(image->image, MemoryUsage::DeviceLocal, ResourceKind::Optimal);
+  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  viewInfo.image = image->image;
+  viewInfo.viewType = viewType;
+  viewInfo.format = format;
+  bool depth = format == VK_FORMAT_D32_SFLOAT;
+  viewInfo.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1,
+                               0, layers};
+  VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image->view));
+  if (cube) {
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_CUBE;
+    VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image->cubeView));
   }
-  return image;
+  return image.release();
 }
 
 }  // namespace
@@ -132,16 +129,16 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
   size_t expected = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
   if (bytes != expected)
     throw Error("image upload of " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected));
-  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
-  std::memcpy(staging.buffer.mapped(), texels, bytes);
-  context.allocator.flush(staging.buffer.allocation);
+  const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
+  std::memcpy(staging->mapped(), texels, bytes);
+  context.allocator.flush(staging->allocation);
   submitAndWait(context, [&](VkCommandBuffer cmd) {
     // Previous contents are discarded; the copy waits for nothing but earlier transfers.
     image.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkBufferImageCopy region = fullCopy(image);
-    vkCmdCopyBufferToImage(cmd, staging.buffer.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, staging->buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     // Any later stage may read the image in its final layout.
     transitionImage(cmd, image, finalLayout, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
@@ -150,20 +147,20 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
 
 std::vector<uint8_t> readbackImage(Context& context, Image& image) {
   size_t bytes = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
-  ScopedBuffer staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
+  const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
   std::vector<uint8_t> texels(bytes);
   submitAndWait(context, [&](VkCommandBuffer cmd) {
     // Whatever wrote the image last must finish before the copy reads it.
     transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                     VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region = fullCopy(image);
-    vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer.buffer, 1, &region);
+    vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->buffer, 1, &region);
     // The host reads the staging buffer after the fence.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                   VK_ACCESS_2_HOST_READ_BIT);
   });
-  context.allocator.invalidate(staging.buffer.allocation);
-  std::memcpy(texels.data(), staging.buffer.mapped(), bytes);
+  context.allocator.invalidate(staging->allocation);
+  std::memcpy(texels.data(), staging->mapped(), bytes);
   return texels;
 }
 

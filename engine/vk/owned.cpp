@@ -6,6 +6,7 @@
 #include "vk/context.h"
 #include "vk/image.h"
 #include "vk/pipeline.h"
+#include "vk/swapchain.h"
 
 namespace planet::vk {
 
@@ -16,40 +17,42 @@ static_assert(!std::is_same_v<VkPipeline, VkSampler>, "Owned needs typed Vulkan 
 void destroyOwned(Context& context, Buffer& buffer) { destroyBuffer(context, buffer); }
 void destroyOwned(Context& context, Image& image) { destroyImage(context, image); }
 void destroyOwned(Context& context, ComputePipeline& pipeline) { destroyComputePipeline(context, pipeline); }
+void destroyOwned(Context& context, Swapchain& swapchain) { destroySwapchain(context, swapchain); }
 
-void destroyOwned(Context& context, VkPipeline& pipeline) {
-  if (pipeline) vkDestroyPipeline(context.device, pipeline, nullptr);
-  pipeline = VK_NULL_HANDLE;
+namespace {
+
+// Destroys `handle` with the device-level `destroy` (a null handle is skipped) and clears it.
+template <typename Handle>
+void destroyDeviceHandle(Context& context, Handle& handle, void (*destroy)(VkDevice, Handle, const VkAllocationCallbacks*)) {
+  if (handle) destroy(context.device, handle, nullptr);
+  handle = VK_NULL_HANDLE;
 }
 
+}  // namespace
+
+void destroyOwned(Context& context, VkPipeline& pipeline) { destroyDeviceHandle(context, pipeline, vkDestroyPipeline); }
 void destroyOwned(Context& context, VkPipelineLayout& layout) {
-  if (layout) vkDestroyPipelineLayout(context.device, layout, nullptr);
-  layout = VK_NULL_HANDLE;
+  destroyDeviceHandle(context, layout, vkDestroyPipelineLayout);
 }
-
 void destroyOwned(Context& context, VkDescriptorSetLayout& layout) {
-  if (layout) vkDestroyDescriptorSetLayout(context.device, layout, nullptr);
-  layout = VK_NULL_HANDLE;
+  destroyDeviceHandle(context, layout, vkDestroyDescriptorSetLayout);
+}
+void destroyOwned(Context& context, VkDescriptorPool& pool) { destroyDeviceHandle(context, pool, vkDestroyDescriptorPool); }
+void destroyOwned(Context& context, VkSampler& sampler) { destroyDeviceHandle(context, sampler, vkDestroySampler); }
+void destroyOwned(Context& context, VkShaderModule& module) { destroyDeviceHandle(context, module, vkDestroyShaderModule); }
+void destroyOwned(Context& context, VkQueryPool& pool) { destroyDeviceHandle(context, pool, vkDestroyQueryPool); }
+void destroyOwned(Context& context, VkCommandPool& pool) { destroyDeviceHandle(context, pool, vkDestroyCommandPool); }
+void destroyOwned(Context& context, VkFence& fence) { destroyDeviceHandle(context, fence, vkDestroyFence); }
+void destroyOwned(Context& context, VkSemaphore& semaphore) { destroyDeviceHandle(context, semaphore, vkDestroySemaphore); }
+void destroyOwned(Context& context, VkRenderPass& pass) { destroyDeviceHandle(context, pass, vkDestroyRenderPass); }
+void destroyOwned(Context& context, VkFramebuffer& framebuffer) {
+  destroyDeviceHandle(context, framebuffer, vkDestroyFramebuffer);
 }
 
-void destroyOwned(Context& context, VkDescriptorPool& pool) {
-  if (pool) vkDestroyDescriptorPool(context.device, pool, nullptr);
-  pool = VK_NULL_HANDLE;
-}
-
-void destroyOwned(Context& context, VkSampler& sampler) {
-  if (sampler) vkDestroySampler(context.device, sampler, nullptr);
-  sampler = VK_NULL_HANDLE;
-}
-
-void destroyOwned(Context& context, VkShaderModule& module) {
-  if (module) vkDestroyShaderModule(context.device, module, nullptr);
-  module = VK_NULL_HANDLE;
-}
-
-void destroyOwned(Context& context, VkQueryPool& pool) {
-  if (pool) vkDestroyQueryPool(context.device, pool, nullptr);
-  pool = VK_NULL_HANDLE;
+// The surface belongs to the instance, not the device.
+void destroyOwned(Context& context, VkSurfaceKHR& surface) {
+  if (surface) vkDestroySurfaceKHR(context.instance, surface, nullptr);
+  surface = VK_NULL_HANDLE;
 }
 
 }  // namespace planet::vk

@@ -1,9 +1,9 @@
 // Ownership of Vulkan objects: vk::Owned<T> holds one object (a raw handle or one of the thin
-// structs Buffer, Image, ComputePipeline) and destroys it when it goes out of scope or is
-// assigned another. A pass declares its objects as Owned members in the order it creates them;
-// C++ then destroys them in reverse order, in the destructor and also when the constructor
-// throws half-way, so no pass writes a release() of its own. The handles stay plain: get()
-// gives the object to pass to Vulkan.
+// structs Buffer, Image, ComputePipeline, Swapchain) and destroys it when it goes out of scope
+// or is assigned another. A pass declares its objects as Owned members in the order it creates
+// them; C++ then destroys them in reverse order, in the destructor and also when the
+// constructor throws half-way, so no pass writes a release() of its own. The handles stay
+// plain: get() gives the object to pass to Vulkan.
 #pragma once
 
 #include <utility>
@@ -16,11 +16,13 @@ class Context;
 struct Buffer;
 struct Image;
 struct ComputePipeline;
+struct Swapchain;
 
 // What Owned calls: the object's destroy function, which accepts (and skips) a null object.
 void destroyOwned(Context& context, Buffer& buffer);
 void destroyOwned(Context& context, Image& image);
 void destroyOwned(Context& context, ComputePipeline& pipeline);
+void destroyOwned(Context& context, Swapchain& swapchain);
 void destroyOwned(Context& context, VkPipeline& pipeline);
 void destroyOwned(Context& context, VkPipelineLayout& layout);
 void destroyOwned(Context& context, VkDescriptorSetLayout& layout);
@@ -29,6 +31,14 @@ void destroyOwned(Context& context, VkDescriptorPool& pool);
 void destroyOwned(Context& context, VkSampler& sampler);
 void destroyOwned(Context& context, VkShaderModule& module);
 void destroyOwned(Context& context, VkQueryPool& pool);
+// Command buffers allocated from the pool go with it.
+void destroyOwned(Context& context, VkCommandPool& pool);
+void destroyOwned(Context& context, VkFence& fence);
+void destroyOwned(Context& context, VkSemaphore& semaphore);
+void destroyOwned(Context& context, VkRenderPass& pass);
+void destroyOwned(Context& context, VkFramebuffer& framebuffer);
+// A surface belongs to the instance (destroy it after every swapchain made on it).
+void destroyOwned(Context& context, VkSurfaceKHR& surface);
 
 template <typename T>
 class Owned {

@@ -1,11 +1,13 @@
 #include "vk/swapchain.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "vk/context.h"
+#include "vk/owned.h"
 
 namespace planet::vk {
 namespace {
@@ -89,29 +91,27 @@ Swapchain createSwapchain(Context& context, VkSurfaceKHR surface, VkExtent2D fra
   info.presentMode = result.presentMode;
   info.clipped = VK_TRUE;
   info.oldSwapchain = old ? old->swapchain : VK_NULL_HANDLE;
-  VK_CHECK(vkCreateSwapchainKHR(context.device, &info, nullptr, &result.swapchain));
+  // Owned until complete: a throw below destroys the new swapchain and the views made so far.
+  Owned<Swapchain> made(context, std::move(result));
+  VK_CHECK(vkCreateSwapchainKHR(context.device, &info, nullptr, &made->swapchain));
   if (old) destroySwapchain(context, *old);
 
   uint32_t count = 0;
-  VK_CHECK(vkGetSwapchainImagesKHR(context.device, result.swapchain, &count, nullptr));
-  result.images.resize(count);
-  VK_CHECK(vkGetSwapchainImagesKHR(context.device, result.swapchain, &count, result.images.data()));
-  try {
-    for (VkImage image : result.images) {
-      VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-      view.image = image;
-      view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-      view.format = result.format;
-      view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      VkImageView handle = VK_NULL_HANDLE;
-      VK_CHECK(vkCreateImageView(context.device, &view, nullptr, &handle));
-      result.views.push_back(handle);
-    }
-  } catch (...) {
-    destroySwapchain(context, result);
-    throw;
+  VK_CHECK(vkGetSwapchainImagesKHR(context.device, made->swapchain, &count, nullptr));
+  made->images.resize(count);
+  VK_CHECK(vkGetSwapchainImagesKHR(context.device, made->swapchain, &count, made->images.data()));
+  made->views.reserve(count);  // no allocation between a view's creation and its push_back
+  for (VkImage image : made->images) {
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = made->format;
+    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView handle = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImageView(context.device, &view, nullptr, &handle));
+    made->views.push_back(handle);
   }
-  return result;
+  return made.release();
 }
 
 void destroySwapchain(Context& context, Swapchain& swapchain) {

@@ -28,7 +28,7 @@ GPU_CONST float kRingEdgeFade = 0.02f;
 // and a sun in the ring plane would otherwise divide by 0).
 GPU_CONST float kRingMinSlantCosine = 0.001f;
 
-// One ring. C++ builds it with planet::ringGpuParams (engine/render/ring_description.h).
+// One ring. C++ builds it with planet::ringGpuParams (engine/reference/ring_density.h).
 struct RingParams {
   vec4 radii;      // x: inner radius (m), y: outer radius (m), z: 1 / (outer − inner), w: casting body's radius (m)
   vec4 colour;     // rgb: linear albedo of the particles, w: overall opacity scale in [0, 1]

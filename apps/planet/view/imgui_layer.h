@@ -8,6 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "view/shutdown_guard.h"
+#include "vk/owned.h"
 #include "vk/swapchain.h"
 
 struct GLFWwindow;
@@ -22,9 +24,9 @@ class ImGuiLayer {
  public:
   // Starts Dear ImGui on `window` (its GLFW backend chains to the callbacks installed before)
   // drawing into `swapchain`'s images, and uploads the font. Throws planet::Error when the window
-  // is minimised (no images) or a backend does not start.
+  // is minimised (no images) or a backend does not start. Destroy it only when nothing uses its
+  // objects any more.
   ImGuiLayer(vk::Context& context, GLFWwindow* window, const vk::Swapchain& swapchain);
-  ~ImGuiLayer();  // nothing may still use its objects
   ImGuiLayer(const ImGuiLayer&) = delete;
   ImGuiLayer& operator=(const ImGuiLayer&) = delete;
 
@@ -41,16 +43,18 @@ class ImGuiLayer {
   void record(VkCommandBuffer cmd, uint32_t imageIndex) const;
 
  private:
-  void start(GLFWwindow* window, const vk::Swapchain& swapchain);
   void createFramebuffers(const vk::Swapchain& swapchain);
-  void release();
 
   vk::Context& context_;
-  VkRenderPass pass_ = VK_NULL_HANDLE;  // made for the first swapchain's format
-  std::vector<VkFramebuffer> framebuffers_;
   VkExtent2D extent_{0, 0};
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  bool glfwBackend_ = false, vulkanBackend_ = false;
+  // In the order of creation (destroyed in reverse): the Vulkan objects, then Dear ImGui's
+  // context and its backends, each set once it started.
+  vk::Owned<VkRenderPass> pass_;  // made for the first swapchain's format
+  std::vector<vk::Owned<VkFramebuffer>> framebuffers_;
+  vk::Owned<VkDescriptorPool> pool_;
+  ShutdownGuard imguiContext_;
+  ShutdownGuard glfwBackend_;
+  ShutdownGuard vulkanBackend_;
 };
 
 }  // namespace planet::view

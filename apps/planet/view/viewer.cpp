@@ -48,8 +48,6 @@ class Viewer {
   int run();
 
  private:
-  void construct();
-  void release();  // everything the destructor frees; safe on a partly constructed viewer
   void createWindowAndContext();
   void recreateSwapchain();
   VkExtent2D windowExtent() const;
@@ -60,14 +58,15 @@ class Viewer {
 
   ViewOptions options_;
   ViewerSettings settings_;
-  // Released in the reverse order by release().
+  // In the order of creation, so destroyed in reverse (the device before the window, every
+  // Vulkan object before the device), also when the constructor throws half-way.
   std::unique_ptr<ViewerWindow> window_;
-  std::unique_ptr<vk::Context> context_;
+  std::unique_ptr<vk::Context> context_;  // ~Context logs a leak report instead of throwing
   std::unique_ptr<WindowSwapchain> swapchain_;
   std::unique_ptr<vk::FrameRing> slots_;  // one frame slot of the Renderer each
+  std::unique_ptr<ViewerFlight> flight_;
   std::unique_ptr<ImGuiLayer> imgui_;
   std::unique_ptr<ViewerRenderer> renderer_;
-  std::unique_ptr<ViewerFlight> flight_;
   FlightCamera& camera() { return flight_->camera(); }
   ViewerUi ui_;
   bool submittedAny_ = false;
@@ -80,19 +79,7 @@ class Viewer {
   std::string pendingScreenshot_;
 };
 
-Viewer::Viewer(const ViewOptions& options) : options_(options) {
-  // A constructor that throws runs no destructor: release what was made so far, so that a
-  // failure here (out of device memory, a lost device) destroys every Vulkan object before the
-  // device, as a normal exit does.
-  try {
-    construct();
-  } catch (...) {
-    release();
-    throw;
-  }
-}
-
-void Viewer::construct() {
+Viewer::Viewer(const ViewOptions& viewOptions) : options_(viewOptions) {
   const ViewOptions& options = options_;
   settings_.planet = options.planet;
   settings_.fovDeg = options.fovDeg;
@@ -153,23 +140,10 @@ void Viewer::waitIdle() {
   if (context_ && context_->device) VK_CHECK(vkDeviceWaitIdle(context_->device));
 }
 
-Viewer::~Viewer() { release(); }
-
-void Viewer::release() {
+Viewer::~Viewer() {
+  // The members go next, in reverse order; no frame may still use what they own. (A constructor
+  // that throws leaves nothing in flight: it submits only through submitAndWait.)
   if (context_ && context_->device) vkDeviceWaitIdle(context_->device);
-  renderer_.reset();
-  imgui_.reset();
-  slots_.reset();
-  swapchain_.reset();
-  if (context_) {
-    try {
-      vk::destroyContext(*context_);
-    } catch (const std::exception& e) {
-      logError("{}", e.what());
-    }
-  }
-  context_.reset();
-  window_.reset();
 }
 
 void Viewer::saveScreenshot(const std::string& path) {

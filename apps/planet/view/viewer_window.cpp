@@ -33,44 +33,32 @@ ViewerWindow& windowOf(GLFWwindow* window) { return *static_cast<ViewerWindow*>(
 
 ViewerWindow::ViewerWindow(uint32_t width, uint32_t height, const std::string& title)
     : keyPressed_(GLFW_KEY_LAST + 1, false) {
-  // A constructor that throws runs no destructor: what was started so far goes here.
-  try {
-    glfwSetErrorCallback(onGlfwError);
-    // Xlib must be made thread-safe before GLFW opens its display: a Vulkan driver or layer that
-    // calls XInitThreads later leaves the display's context table without its lock, and GLFW's
-    // event loop crashes in XFindContext (seen with lavapipe and the validation layer).
-    XInitThreads();
-    if (!glfwInit())
-      throw Error(fmt::format("cannot open a window: {}; without a display, 'planet render' draws to a PNG",
-                              glfwErrorText.empty() ? "GLFW failed to start" : glfwErrorText));
-    glfwStarted_ = true;
-    if (!glfwVulkanSupported())
-      throw Error(fmt::format("cannot open a window: GLFW finds no usable Vulkan loader{}",
-                              glfwErrorText.empty() ? "" : " (" + glfwErrorText + ")"));
-    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
-    if (!window_) throw Error(fmt::format("cannot open a window: {}", glfwErrorText));
-  } catch (...) {
-    release();
-    throw;
-  }
-  glfwSetWindowUserPointer(window_, this);
+  glfwSetErrorCallback(onGlfwError);
+  // Xlib must be made thread-safe before GLFW opens its display: a Vulkan driver or layer that
+  // calls XInitThreads later leaves the display's context table without its lock, and GLFW's
+  // event loop crashes in XFindContext (seen with lavapipe and the validation layer).
+  XInitThreads();
+  if (!glfwInit())
+    throw Error(fmt::format("cannot open a window: {}; without a display, 'planet render' draws to a PNG",
+                            glfwErrorText.empty() ? "GLFW failed to start" : glfwErrorText));
+  glfw_ = ShutdownGuard(glfwTerminate);
+  if (!glfwVulkanSupported())
+    throw Error(fmt::format("cannot open a window: GLFW finds no usable Vulkan loader{}",
+                            glfwErrorText.empty() ? "" : " (" + glfwErrorText + ")"));
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  window_.reset(glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr));
+  if (!window_) throw Error(fmt::format("cannot open a window: {}", glfwErrorText));
+  GLFWwindow* window = window_.get();
+  glfwSetWindowUserPointer(window, this);
   // Installed before Dear ImGui's, which chain to them.
-  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { windowOf(w).scroll_ += dy; });
-  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { windowOf(w).scroll_ += dy; });
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
     if (key >= 0 && key <= GLFW_KEY_LAST && action == GLFW_PRESS) windowOf(w).keyPressed_[key] = true;
   });
-  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) { windowOf(w).resized_ = true; });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { windowOf(w).resized_ = true; });
 }
 
-ViewerWindow::~ViewerWindow() { release(); }
-
-void ViewerWindow::release() {
-  if (window_) glfwDestroyWindow(window_);
-  window_ = nullptr;
-  if (glfwStarted_) glfwTerminate();
-  glfwStarted_ = false;
-}
+void ViewerWindow::DestroyWindow::operator()(GLFWwindow* window) const { glfwDestroyWindow(window); }
 
 std::vector<const char*> ViewerWindow::instanceExtensions() const {
   uint32_t count = 0;
@@ -84,9 +72,9 @@ void ViewerWindow::watchStopSignals() {
   std::signal(SIGTERM, onStopSignal);
 }
 
-bool ViewerWindow::shouldClose() const { return glfwWindowShouldClose(window_) || stopRequested; }
+bool ViewerWindow::shouldClose() const { return glfwWindowShouldClose(window_.get()) || stopRequested; }
 
-void ViewerWindow::close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void ViewerWindow::close() { glfwSetWindowShouldClose(window_.get(), GLFW_TRUE); }
 
 void ViewerWindow::pollEvents() { glfwPollEvents(); }
 
@@ -94,7 +82,7 @@ void ViewerWindow::waitEvents(double timeoutS) { glfwWaitEventsTimeout(timeoutS)
 
 VkExtent2D ViewerWindow::framebufferSize() const {
   int width = 0, height = 0;
-  glfwGetFramebufferSize(window_, &width, &height);
+  glfwGetFramebufferSize(window_.get(), &width, &height);
   return VkExtent2D{uint32_t(width), uint32_t(height)};
 }
 
@@ -115,14 +103,14 @@ FlightInput ViewerWindow::readInput(double dtS, bool orbit, uint32_t viewHeightP
   input.dtS = dtS;
   const ImGuiIO& io = ImGui::GetIO();
   double x = 0.0, y = 0.0;
-  glfwGetCursorPos(window_, &x, &y);
+  glfwGetCursorPos(window_.get(), &x, &y);
   const double dx = cursorKnown_ ? x - lastCursorX_ : 0.0;
   const double dy = cursorKnown_ ? y - lastCursorY_ : 0.0;
   lastCursorX_ = x;
   lastCursorY_ = y;
   cursorKnown_ = true;
   if (!io.WantCaptureKeyboard) {
-    auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0 : 0.0; };
+    auto key = [&](int k) { return glfwGetKey(window_.get(), k) == GLFW_PRESS ? 1.0 : 0.0; };
     input.forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
     input.right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
     input.up = std::max(key(GLFW_KEY_E), key(GLFW_KEY_SPACE)) - std::max(key(GLFW_KEY_Q), key(GLFW_KEY_C));
@@ -130,10 +118,10 @@ FlightInput ViewerWindow::readInput(double dtS, bool orbit, uint32_t viewHeightP
     if (key(GLFW_KEY_LEFT_ALT) || key(GLFW_KEY_RIGHT_ALT)) input.speedFactor = 0.25;
   }
   if (!io.WantCaptureMouse) {
-    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) {
+    if (glfwGetMouseButton(window_.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) {
       input.lookX = dx;
       input.lookY = dy;
-    } else if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && orbit) {
+    } else if (glfwGetMouseButton(window_.get(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && orbit) {
       // Dragging the ground: a drag across the window moves about one view height.
       const double perPixel = 2.0 / std::max(1.0, double(viewHeightPx)) / std::max(dtS, 1e-3);
       input.forward += dy * perPixel;

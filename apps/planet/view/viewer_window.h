@@ -3,12 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "camera/flight_camera.h"
+#include "view/shutdown_guard.h"
 
 struct GLFWwindow;
 
@@ -17,13 +19,12 @@ namespace planet::view {
 class ViewerWindow {
  public:
   // Throws planet::Error with one line when no window can be opened (no display, no Vulkan
-  // loader for GLFW).
+  // loader for GLFW). Destroy it after every Vulkan object made for the window.
   ViewerWindow(uint32_t width, uint32_t height, const std::string& title);
-  ~ViewerWindow();  // after every Vulkan object made for the window
   ViewerWindow(const ViewerWindow&) = delete;
   ViewerWindow& operator=(const ViewerWindow&) = delete;
 
-  GLFWwindow* handle() const { return window_; }
+  GLFWwindow* handle() const { return window_.get(); }
   // The instance extensions a Vulkan surface on this window needs.
   std::vector<const char*> instanceExtensions() const;
 
@@ -46,15 +47,19 @@ class ViewerWindow {
   FlightInput readInput(double dtS, bool orbit, uint32_t viewHeightPx);
 
  private:
-  void release();
+  struct DestroyWindow {
+    void operator()(GLFWwindow* window) const;
+  };
 
-  GLFWwindow* window_ = nullptr;
-  bool glfwStarted_ = false;
+  // Input state (the window's callbacks write resized_, scroll_ and keyPressed_).
   bool resized_ = false;
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
   bool cursorKnown_ = false;
   double scroll_ = 0.0;
   std::vector<bool> keyPressed_;  // by GLFW key code
+  // In the order of creation (destroyed in reverse, before the state above): GLFW, its window.
+  ShutdownGuard glfw_;
+  std::unique_ptr<GLFWwindow, DestroyWindow> window_;
 };
 
 }  // namespace planet::view

@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vk/owned.h"
 #include "vk/swapchain.h"
 
 struct GLFWwindow;
@@ -22,9 +23,9 @@ namespace planet::view {
 class WindowSwapchain {
  public:
   // Creates the window's surface (no swapchain yet: create() makes it). Throws planet::Error with
-  // one line when no surface can be made or the device cannot present to it.
+  // one line when no surface can be made or the device cannot present to it. Destroy it only
+  // when nothing uses the images any more.
   WindowSwapchain(vk::Context& context, GLFWwindow* window, bool vsync);
-  ~WindowSwapchain();  // nothing may still use the images
   WindowSwapchain(const WindowSwapchain&) = delete;
   WindowSwapchain& operator=(const WindowSwapchain&) = delete;
 
@@ -39,9 +40,9 @@ class WindowSwapchain {
   bool needsRecreate(uint32_t width, uint32_t height) const;
   uint32_t recreations() const { return recreations_; }
 
-  bool empty() const { return swapchain_.images.empty(); }  // minimised
-  const vk::Swapchain& swapchain() const { return swapchain_; }
-  VkExtent2D extent() const { return swapchain_.extent; }
+  bool empty() const { return swapchain_->images.empty(); }  // minimised
+  const vk::Swapchain& swapchain() const { return *swapchain_; }
+  VkExtent2D extent() const { return swapchain_->extent; }
 
   // Acquires the next image into `imageIndex`, signalling `acquired` once it may be written.
   // False when the swapchain is out of date (recreate it and skip the frame); a suboptimal one
@@ -52,21 +53,20 @@ class WindowSwapchain {
   // The frame's submission waits for the acquire semaphore at the transfer stage.
   void recordBlit(VkCommandBuffer cmd, vk::Image& source, uint32_t imageIndex) const;
   // Signalled by the submission that draws image `imageIndex`; the present waits for it.
-  VkSemaphore renderedSemaphore(uint32_t imageIndex) const { return rendered_[imageIndex]; }
+  VkSemaphore renderedSemaphore(uint32_t imageIndex) const { return rendered_[imageIndex].get(); }
   // Presents image `imageIndex` on `queue`; an out-of-date or suboptimal swapchain is marked stale.
   void present(VkQueue queue, uint32_t imageIndex);
 
  private:
-  void release();
-
   vk::Context& context_;
   GLFWwindow* window_;
   bool vsync_;
-  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
-  vk::Swapchain swapchain_;
+  // In the order of creation (destroyed in reverse).
+  vk::Owned<VkSurfaceKHR> surface_;
+  vk::Owned<vk::Swapchain> swapchain_;
   // Per image, not per frame slot: a semaphore may be signalled again only once the present that
   // waited on it is done, which reacquiring its image guarantees. Kept across recreations.
-  std::vector<VkSemaphore> rendered_;
+  std::vector<vk::Owned<VkSemaphore>> rendered_;
   bool stale_ = false;
   uint32_t recreations_ = 0;
 };
