@@ -43,7 +43,7 @@ bool noDevice(const CommandResult& run) { return run.err.find("no Vulkan") != st
 TEST(Cli, HelpListsTheSubcommands) {
   CommandResult run = planet("--help");
   EXPECT_EQ(run.exitCode, 0);
-  for (const char* cmd : {"noise", "validate", "bench", "height", "export", "render", "view"})
+  for (const char* cmd : {"noise", "validate", "bench", "height", "export", "stats", "render", "view"})
     EXPECT_NE(run.out.find(cmd), std::string::npos) << cmd;
   CommandResult sub = planet("noise --help");
   EXPECT_EQ(sub.exitCode, 0);
@@ -457,6 +457,23 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"view --path {h}/nul.path", "", "nul.path:2: '?' is not a number"},
       {"view --path {h}/truncated.path", "", "truncated.path:2: '1e' is not a number"},
       {"view --path {h}/empty.path", "", "empty.path: a camera path needs at least 2 keys, got 0"},
+      // planet stats (no Vulkan; every check before the heights are evaluated)
+      {"stats --size 0x0", "", "--size 0x0 is outside 1x1 .. 8192x4096"},
+      {"stats --size 8193x4096", "", "--size 8193x4096 is outside 1x1 .. 8192x4096"},
+      {"stats --size 256", "", "--size expects WxH in pixels, got '256'"},
+      {"stats --size ''", "", "--size expects WxH in pixels, got ''"},
+      {"stats --size -5x3", "", "--size expects WxH in pixels, got '-5x3'"},
+      {"stats --size 64x", "", "--size expects WxH in pixels, got '64x'"},
+      {"stats --seed 99999999999", "", "--seed must be in 0..4294967295, got 99999999999"},
+      {"stats --seed -1", "", "--seed must not be negative, got -1"},
+      {"stats --seed many", "", "--seed expects a whole number, got 'many'"},
+      {"stats --preset nosuch", "", "unknown planet preset 'nosuch'"},
+      {"stats --preset {h}/garbage.bin", "", "garbage.bin:1:1: not"},
+      {"stats --preset {h}/dir.toml", "", "dir.toml': Is a directory"},
+      {"stats --json ''", "", "--json must name a file"},
+      {"stats --json {out}", "", "--json must name a file, got '"},
+      {"stats --json {out}/no_such_dir/s.json", "", "cannot write '{out}/no_such_dir/s.json'", 1},
+      {"stats --frobnicate", "", "--frobnicate"},
       {"view --path {h}/hugetime.path", "", "hugetime.path:2: time_s 1e+300 is outside"},
       {"view --path {h}/dir.toml", "", "dir.toml': Is a directory"},
       {"view --screenshot /tmp/", "", "--screenshot must name a file, got '/tmp/'"},

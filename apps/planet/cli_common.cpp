@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cstring>
 #include <filesystem>
+#include <utility>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -110,6 +111,35 @@ void checkNumbersAsText(CLI::App& command) {
     else if (type == "FLOAT")
       option->check(realText(option->get_name()));
   }
+}
+
+ProgressLine::ProgressLine(std::string label)
+    : label_(std::move(label)), interactive_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {
+  lastLine_ = start_;
+}
+
+ProgressLine::~ProgressLine() {
+  if (interactive_ && printed_) std::fputs("\n", stderr);
+}
+
+void ProgressLine::operator()(size_t done, size_t total) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto every = interactive_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10'000);
+  const bool last = done == total;
+  if (now - lastLine_ < every && !(last && printed_)) return;
+  lastLine_ = now;
+  printed_ = true;
+  const double fraction = total > 0 ? double(done) / double(total) : 1.0;
+  const double seconds = std::chrono::duration<double>(now - start_).count();
+  constexpr int kBarWidth = 30;
+  const int filled = int(fraction * kBarWidth);
+  const std::string bar = std::string(size_t(filled), '#') + std::string(size_t(kBarWidth - filled), '.');
+  const std::string left =
+      done > 0 && !last ? fmt::format(", ~{:.0f} s left", seconds * (1.0 - fraction) / fraction) : "";
+  const std::string line = fmt::format("{} [{}] {:3.0f} %  {} of {} heights  {:.1f} s{}", label_, bar, 100.0 * fraction,
+                                       done, total, seconds, left);
+  std::fprintf(stderr, interactive_ ? "\r%s   " : "%s\n", line.c_str());
+  std::fflush(stderr);
 }
 
 void checkOutputFile(const std::string& option, const std::string& path) {

@@ -2,6 +2,7 @@
 // and the exit codes.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <functional>
@@ -82,6 +83,25 @@ SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& t
 // its origin).
 void checkSceneExcludes(const CLI::App& command);
 
+// The progress bar of long CPU work on stderr (planet export, planet stats): redrawn in place on a
+// terminal (at most 5 times a second), else a line at most every 10 s, so that logs stay short
+// and a quick run prints nothing there. `label` starts the line ("export heightmap 2048x1024");
+// call it as parallelFor's progress callback.
+class ProgressLine {
+ public:
+  explicit ProgressLine(std::string label);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+  void operator()(size_t done, size_t total);
+
+ private:
+  std::string label_;
+  bool interactive_;
+  bool printed_ = false;
+  std::chrono::steady_clock::time_point start_, lastLine_;
+};
+
 // A bad value the user gave (flag or input line): printed as one line, exit code 2. Control
 // characters in the message (a newline inside a quoted argument) become '?', so that it stays
 // one line whatever it quotes.
@@ -101,6 +121,7 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
                                                                      int& exitCode);
 void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addExportCommand(CLI::App& app, int& exitCode);
+void addStatsCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 

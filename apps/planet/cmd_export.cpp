@@ -1,8 +1,6 @@
 // planet export heightmap | mesh: files for other tools from the CPU reference (no Vulkan):
 // whole-planet heightmaps with a JSON sidecar, and glTF / OBJ meshes of a region
 // (engine/export). The heights are terrainHeightM's, as `planet height` prints them.
-#include <unistd.h>
-
 #include <cctype>
 #include <charconv>
 #include <chrono>
@@ -43,44 +41,6 @@ struct HeightmapCommand : CommonExportOptions {
 struct MeshCommand : CommonExportOptions {
   std::string region;
   std::string resolution = "256";
-};
-
-// The progress bar on stderr: redrawn in place on a terminal (at most 5 times a second), else a
-// line at most every 10 s, so that logs stay short and a quick export prints nothing there.
-class ExportProgress {
- public:
-  explicit ExportProgress(std::string what)
-      : what_(std::move(what)), interactive_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {
-    lastLine_ = start_;
-  }
-  ~ExportProgress() {
-    if (interactive_ && printed_) std::fputs("\n", stderr);
-  }
-  void operator()(size_t done, size_t total) {
-    const auto now = std::chrono::steady_clock::now();
-    const auto every = interactive_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10'000);
-    const bool last = done == total;
-    if (now - lastLine_ < every && !(last && printed_)) return;
-    lastLine_ = now;
-    printed_ = true;
-    const double fraction = total > 0 ? double(done) / double(total) : 1.0;
-    const double seconds = std::chrono::duration<double>(now - start_).count();
-    constexpr int kBarWidth = 30;
-    const int filled = int(fraction * kBarWidth);
-    const std::string bar = std::string(size_t(filled), '#') + std::string(size_t(kBarWidth - filled), '.');
-    const std::string left =
-        done > 0 && !last ? fmt::format(", ~{:.0f} s left", seconds * (1.0 - fraction) / fraction) : "";
-    const std::string line = fmt::format("export {} [{}] {:3.0f} %  {} of {} heights  {:.1f} s{}", what_, bar,
-                                         100.0 * fraction, done, total, seconds, left);
-    std::fprintf(stderr, interactive_ ? "\r%s   " : "%s\n", line.c_str());
-    std::fflush(stderr);
-  }
-
- private:
-  std::string what_;
-  bool interactive_;
-  bool printed_ = false;
-  std::chrono::steady_clock::time_point start_, lastLine_;
 };
 
 // --threads checked, and the preset resolved with --seed applied: the planet, and the source
@@ -201,7 +161,7 @@ int runHeightmap(const HeightmapCommand& cmd, const CLI::App& sub) {
   const auto start = std::chrono::steady_clock::now();
   Heightmap map;
   {
-    ExportProgress progress(fmt::format("heightmap {}x{}", spec.width, spec.height));
+    ProgressLine progress(fmt::format("export heightmap {}x{}", spec.width, spec.height));
     map = computeHeightmap(planet, spec, cmd.threads, std::ref(progress));
   }
   const double computeS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -290,7 +250,7 @@ int runMesh(const MeshCommand& cmd) {
   const auto start = std::chrono::steady_clock::now();
   RegionMesh mesh;
   {
-    ExportProgress progress(fmt::format("mesh {}x{}", spec.resolution, spec.resolution));
+    ProgressLine progress(fmt::format("export mesh {}x{}", spec.resolution, spec.resolution));
     mesh = computeRegionMesh(planet, spec, cmd.threads, std::ref(progress));
   }
   writeMesh(cmd.out, planet, source, mesh, meshFormat);

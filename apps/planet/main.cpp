@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   cli::addBenchCommand(app, global, exitCode);
   cli::addHeightCommand(app, global, exitCode);
   cli::addExportCommand(app, exitCode);
+  cli::addStatsCommand(app, exitCode);
   cli::addRenderCommand(app, global, exitCode);
   cli::addViewCommand(app, global, exitCode);
 
