@@ -25,6 +25,7 @@
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/image.h"
+#include "vk/owned.h"
 #include "vk/pipeline.h"
 #include "vk/timer.h"
 
@@ -425,16 +426,16 @@ std::vector<glm::vec4> evaluateOnGpu(vk::Context& context, const gpu::RingParams
   vk::ComputePipeline pipeline =
       vk::createComputePipeline(context, kSpv_ring_eval_comp, 3, sizeof(gpu::RingEvalPush), {}, 1);
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  vk::ScopedBuffer params(context, vk::createBuffer(context, sizeof(ring), usage, vk::MemoryUsage::DeviceLocal));
-  vk::ScopedBuffer input(
+  vk::Owned<vk::Buffer> params(context, vk::createBuffer(context, sizeof(ring), usage, vk::MemoryUsage::DeviceLocal));
+  vk::Owned<vk::Buffer> input(
       context, vk::createBuffer(context, queries.size() * sizeof(glm::vec4), usage, vk::MemoryUsage::DeviceLocal));
-  vk::ScopedBuffer output(
+  vk::Owned<vk::Buffer> output(
       context, vk::createBuffer(context, queries.size() * sizeof(glm::vec4), usage, vk::MemoryUsage::DeviceLocal));
   std::vector<glm::vec4> results(queries.size());
   try {
-    vk::uploadBuffer(context, params.buffer, &ring, sizeof(ring));
-    vk::uploadBuffer(context, input.buffer, queries.data(), queries.size() * sizeof(glm::vec4));
-    const vk::Buffer* buffers[] = {&params.buffer, &input.buffer, &output.buffer};
+    vk::uploadBuffer(context, *params, &ring, sizeof(ring));
+    vk::uploadBuffer(context, *input, queries.data(), queries.size() * sizeof(glm::vec4));
+    const vk::Buffer* buffers[] = {&*params, &*input, &*output};
     VkDescriptorSet set = vk::allocateStorageSet(context, pipeline, buffers);
     gpu::RingEvalPush push{};
     push.sun = glm::vec4(sun, 0.0f);
@@ -450,7 +451,7 @@ std::vector<glm::vec4> evaluateOnGpu(vk::Context& context, const gpu::RingParams
                         VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
                         VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
     });
-    vk::readbackBuffer(context, output.buffer, results.data(), results.size() * sizeof(glm::vec4));
+    vk::readbackBuffer(context, *output, results.data(), results.size() * sizeof(glm::vec4));
   } catch (...) {
     vk::destroyComputePipeline(context, pipeline);
     throw;

@@ -26,7 +26,7 @@ std::unique_ptr<vk::Context> openContext(const GlobalOptions& options) {
   return vk::createContext(contextOptions);
 }
 
-void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height, uint32_t maxWidth, uint32_t maxHeight) {
   const size_t x = text.find('x');
   auto number = [&](std::string_view part, uint32_t& value) {
     auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
@@ -35,8 +35,12 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
   if (x == std::string::npos || !number(std::string_view(text).substr(0, x), width) ||
       !number(std::string_view(text).substr(x + 1), height))
     throw UsageError("--size expects WIDTHxHEIGHT in pixels, got '" + text + "'");
-  if (width == 0 || height == 0 || width > kRenderMaxSize || height > kRenderMaxSize)
-    throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, kRenderMaxSize, kRenderMaxSize));
+  if (width == 0 || height == 0 || width > maxWidth || height > maxHeight)
+    throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, maxWidth, maxHeight));
+}
+
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+  parseSize(text, width, height, kRenderMaxSize, kRenderMaxSize);
 }
 
 void checkFieldOfView(double degrees) {

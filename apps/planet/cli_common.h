@@ -51,7 +51,9 @@ void printOnePerLine(const Range& values, std::string_view format) {
   std::fwrite(out.data(), 1, out.size(), stdout);
 }
 
-// "WxH" in pixels for --size: both in 1..kRenderMaxSize, else UsageError naming the text.
+// "WxH" in pixels for --size: width in 1..maxWidth and height in 1..maxHeight, else UsageError
+// naming the text. Without bounds, a render's: both in 1..kRenderMaxSize.
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height, uint32_t maxWidth, uint32_t maxHeight);
 void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
 
 // --fov in degrees: in (0, kRenderMaxFovDeg], else UsageError naming the value.

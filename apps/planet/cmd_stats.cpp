@@ -1,7 +1,6 @@
 // planet stats: the large-scale terrain statistics of issue 10 (engine/export/terrain_statistics.h)
 // from the CPU reference's equirect height grid, the one `planet export heightmap` writes (no
 // Vulkan), with issue 10's targets beside each figure.
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -33,19 +32,9 @@ struct StatsCommand {
 };
 
 HeightmapSpec parseStatsSize(const std::string& text) {
-  const size_t x = text.find('x');
-  uint64_t values[2] = {0, 0};
-  for (int k = 0; k < 2; ++k) {
-    const std::string_view part = x == std::string::npos ? std::string_view()
-                                  : k == 0               ? std::string_view(text).substr(0, x)
-                                                         : std::string_view(text).substr(x + 1);
-    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), values[k]);
-    if (part.empty() || ec != std::errc() || ptr != part.data() + part.size())
-      throw UsageError(fmt::format("--size expects WxH in pixels, got '{}'", text));
-  }
-  if (values[0] < 1 || values[1] < 1 || values[0] > kStatsMaxWidth || values[1] > kStatsMaxHeight)
-    throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, kStatsMaxWidth, kStatsMaxHeight));
-  return equirectSpec(uint32_t(values[0]), uint32_t(values[1]));
+  uint32_t width = 0, height = 0;
+  parseSize(text, width, height, kStatsMaxWidth, kStatsMaxHeight);
+  return equirectSpec(width, height);
 }
 
 // A figure that may be NaN (no land, no ocean, no coast): "n/a" in the table, null in JSON.

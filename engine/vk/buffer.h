@@ -30,18 +30,6 @@ struct Buffer {
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory);
 void destroyBuffer(Context& context, Buffer& buffer);
 
-// Owns a temporary buffer (staging, scratch) and destroys it when leaving scope, also when an
-// exception passes through. The engine uses vk::Owned<Buffer> (owned.h) for this; ScopedBuffer
-// stays for the tests written against it.
-struct ScopedBuffer {
-  Context& context;
-  Buffer buffer;
-  ScopedBuffer(Context& ctx, Buffer b) : context(ctx), buffer(b) {}
-  ScopedBuffer(const ScopedBuffer&) = delete;
-  ScopedBuffer& operator=(const ScopedBuffer&) = delete;
-  ~ScopedBuffer() { destroyBuffer(context, buffer); }
-};
-
 // Copies `bytes` from host memory into the buffer at `offset`: directly when the buffer is
 // mapped, else through a temporary staging buffer and a transfer (blocking).
 void uploadBuffer(Context& context, Buffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
