@@ -35,7 +35,7 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd, con
   auto context = openContext(global);
   const bool interactive = ::isatty(STDERR_FILENO);
   noise::NoiseBenchReport report = noise::runNoiseBench(*context, o, [&](const std::string& method) {
-    std::fprintf(stderr, interactive ? "\rmeasuring %-16s" : "measuring %s\n", method.c_str());
+    std::fprintf(stderr, interactive ? "\rmeasuring %-24s" : "measuring %s\n", method.c_str());
   });
   if (interactive) std::fprintf(stderr, "\n");
   std::fputs(report.table().c_str(), stdout);
@@ -61,7 +61,7 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   CLI::App* sub = bench->add_subcommand(
       "noise",
       "Point-octave evaluations per second: GPU (fast and reference hash), CPU reference on 1 and all "
-      "threads, libnoise Perlin and RidgedMulti, on the same points");
+      "threads, libnoise Perlin and RidgedMulti, on the same points; GPU and CPU also with the analytic gradient");
   sub->add_option("--points", cmd->options.points, "Points per run")->capture_default_str();
   sub->add_option("--octaves", cmd->options.octaves, "fBm octaves")->capture_default_str();
   sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")

@@ -1,6 +1,8 @@
-// planet noise: evaluates one noise function at points read from stdin.
+// planet noise: evaluates one noise function (or it and its gradient) at points read from stdin.
 #include <cstdio>
 #include <iostream>
+#include <iterator>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -20,7 +22,16 @@ struct NoiseCommand {
   noise::NoiseSettings settings;
   double offset = 0.0;
   double gain = 0.0;
+  bool gradient = false;  // print value dx dy dz per line
 };
+
+// `value dx dy dz` per point, each %.9g (enough to round-trip a float).
+void printGradients(const std::vector<glm::vec4>& gradients) {
+  fmt::memory_buffer out;
+  for (const glm::vec4& g : gradients)
+    fmt::format_to(std::back_inserter(out), "{:.9g} {:.9g} {:.9g} {:.9g}\n", g.x, g.y, g.z, g.w);
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
 
 int runNoise(const GlobalOptions& global, NoiseCommand& cmd, const CLI::App& sub) {
   noise::NoiseSettings& s = cmd.settings;
@@ -38,21 +49,30 @@ int runNoise(const GlobalOptions& global, NoiseCommand& cmd, const CLI::App& sub
     throw UsageError(e.what());
   }
 
-  std::vector<float> values(points.size());
+  std::vector<float> values(cmd.gradient ? 0 : points.size());
+  std::vector<glm::vec4> gradients(cmd.gradient ? points.size() : 0);
   int exitCode = 0;
   if (!points.empty()) {
     if (cmd.backend == "gpu") {
       auto context = openContext(global);
       {
         noise::GpuNoise gpu(*context);
-        gpu.evaluate(s, points, values);
+        if (cmd.gradient)
+          gpu.evaluateGradient(s, points, gradients);
+        else
+          gpu.evaluate(s, points, values);
       }
       exitCode = finishWithValidation(*context, 0);
+    } else if (cmd.gradient) {
+      noise::evaluateCpuGradient(s, points, gradients, 0);
     } else {
       noise::evaluateCpu(s, points, values, 0);
     }
   }
-  printOnePerLine(values, "{:.9g}");  // as printf %.9g
+  if (cmd.gradient)
+    printGradients(gradients);
+  else
+    printOnePerLine(values, "{:.9g}");  // as printf %.9g
   return exitCode;
 }
 
@@ -61,7 +81,9 @@ int runNoise(const GlobalOptions& global, NoiseCommand& cmd, const CLI::App& sub
 void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<NoiseCommand>();
   CLI::App* sub = app.add_subcommand(
-      "noise", "Evaluate a noise function at points 'x y z' read from stdin, one value per line (%.9g)");
+      "noise",
+      "Evaluate a noise function at points 'x y z' read from stdin, one value per line (%.9g), or with --gradient "
+      "'value dx dy dz'");
   sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade | craters")->required();
   sub->add_option("--octaves", cmd->settings.octaves, "Octaves, 1..32")->capture_default_str();
   sub->add_option("--lacunarity", cmd->settings.lacunarity, "Frequency ratio between octaves, in (1, 8]")
@@ -76,6 +98,9 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
   sub->add_option("--hash", cmd->hash, "Lattice hash: fast (ALU only) | reference (Perlin's table)")
       ->capture_default_str();
   sub->add_option("--backend", cmd->backend, "cpu (reference) | gpu (compute shader)")->capture_default_str();
+  sub->add_flag("--gradient", cmd->gradient,
+                "Print the value and its analytic gradient with respect to x, y, z: 'value dx dy dz' per line (every "
+                "type; at a kink such as ridged's |N|, the derivative on the side the value takes)");
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runNoise(global, *cmd, *sub); });
 }

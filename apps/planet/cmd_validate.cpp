@@ -1,4 +1,5 @@
-// planet validate: GPU compute against the CPU reference for every noise type and hash.
+// planet validate: GPU compute against the CPU reference for every noise type and hash, the value
+// and the value with gradient.
 #include <unistd.h>
 
 #include <cstdio>
@@ -42,8 +43,8 @@ void addValidateCommand(CLI::App& app, const GlobalOptions& global, int& exitCod
   auto cmd = std::make_shared<ValidateCommand>();
   CLI::App* sub = app.add_subcommand(
       "validate",
-      "Compare the GPU compute noise with the CPU reference (every type, both hashes, several parameter sets); "
-      "exit 0 only within the device's tolerance (lavapipe: bit-identical)");
+      "Compare the GPU compute noise with the CPU reference (every type, both hashes, several parameter sets; the "
+      "value and the value with its gradient); exit 0 only within the device's tolerance (lavapipe: bit-identical)");
   sub->add_option("--points", cmd->points, "Points per case")->capture_default_str();
   sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");
   checkNumbersAsText(*sub);

@@ -31,7 +31,7 @@ NoiseBenchResult measure(const std::string& method, const NoiseBenchOptions& opt
   const double evals = double(options.points) * options.octaves;
   for (int i = 0; i < options.repeats; ++i) rates.push_back(evals / run() / 1e6);
   const auto [low, high] = std::minmax_element(rates.begin(), rates.end());
-  return {method, options.octaves, percentile(rates, 50.0), *low, *high};
+  return {method, "value", options.octaves, percentile(rates, 50.0), *low, *high};
 }
 
 // libnoise modules evaluated point by point on one thread, as a library user would.
@@ -44,9 +44,9 @@ double runLibnoise(Module& module, const std::vector<glm::vec3>& points, std::ve
 
 }  // namespace
 
-double NoiseBenchReport::rate(const std::string& method) const {
+double NoiseBenchReport::rate(const std::string& method, const std::string& output) const {
   for (const NoiseBenchResult& r : results)
-    if (r.method == method) return r.medianMevalsPerS;
+    if (r.method == method && r.output == output) return r.medianMevalsPerS;
   return 0.0;
 }
 
@@ -59,6 +59,7 @@ nlohmann::json NoiseBenchReport::toJson() const {
   j["results"] = nlohmann::json::array();
   for (const NoiseBenchResult& r : results)
     j["results"].push_back({{"method", r.method},
+                            {"output", r.output},
                             {"octaves", r.octaves},
                             {"mevals_per_s", r.medianMevalsPerS},
                             {"min", r.minMevalsPerS},
@@ -68,14 +69,21 @@ nlohmann::json NoiseBenchReport::toJson() const {
 
 std::string NoiseBenchReport::table() const {
   std::string out = fmt::format("device: {} ({})\npoints: {}, CPU threads: {}\n\n", device, driver, points, cpuThreads);
-  out += fmt::format("{:<16} {:>7} {:>14} {:>22}\n", "method", "octaves", "median M/s", "min - max M/s");
+  out +=
+      fmt::format("{:<16} {:<9} {:>7} {:>14} {:>22}\n", "method", "output", "octaves", "median M/s", "min - max M/s");
   for (const NoiseBenchResult& r : results)
-    out += fmt::format("{:<16} {:>7} {:>14.1f} {:>10.1f} - {:<10.1f}\n", r.method, r.octaves, r.medianMevalsPerS,
-                       r.minMevalsPerS, r.maxMevalsPerS);
+    out += fmt::format("{:<16} {:<9} {:>7} {:>14.1f} {:>10.1f} - {:<10.1f}\n", r.method, r.output, r.octaves,
+                       r.medianMevalsPerS, r.minMevalsPerS, r.maxMevalsPerS);
   double fast = rate("gpu_fast");
   if (fast > 0 && rate("cpu_all") > 0 && rate("libnoise_perlin") > 0)
     out += fmt::format("\ngpu_fast: {:.1f}x cpu_all, {:.1f}x libnoise_perlin, {:.1f}x gpu_reference\n",
                        fast / rate("cpu_all"), fast / rate("libnoise_perlin"), fast / rate("gpu_reference"));
+  // What the gradient costs: the value's rate over the value-and-gradient rate, per method.
+  std::string costs;
+  for (const char* method : {"gpu_fast", "gpu_reference", "cpu_1", "cpu_all"})
+    if (rate(method) > 0 && rate(method, "gradient") > 0)
+      costs += fmt::format("{}{} {:.2f}x", costs.empty() ? "" : ", ", method, rate(method) / rate(method, "gradient"));
+  if (!costs.empty()) out += fmt::format("gradient costs (value rate / value-and-gradient rate): {}\n", costs);
   return out;
 }
 
@@ -94,6 +102,7 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
   // The validation point set near the origin: the same points for every method.
   const std::vector<glm::vec3> points = validationPoints(options.points, false, 1);
   std::vector<float> values(points.size());
+  std::vector<glm::vec4> gradients;  // sized when the CPU's gradient runs come
   NoiseSettings settings;
   settings.type = NoiseType::Fbm;
   settings.octaves = options.octaves;
@@ -101,20 +110,35 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
   {
     GpuNoise gpu(context);
     gpu.setPoints(points);
-    for (NoiseHash hash : {NoiseHash::Fast, NoiseHash::Reference}) {
-      std::string method = hash == NoiseHash::Fast ? "gpu_fast" : "gpu_reference";
-      note(method);
-      settings.hash = hash;
-      report.results.push_back(measure(method, options, [&] { return gpu.dispatch(settings) * 1e-3; }));
+    for (bool gradient : {false, true}) {
+      for (NoiseHash hash : {NoiseHash::Fast, NoiseHash::Reference}) {
+        std::string method = hash == NoiseHash::Fast ? "gpu_fast" : "gpu_reference";
+        note(gradient ? method + " gradient" : method);
+        settings.hash = hash;
+        NoiseBenchResult result = measure(method, options, [&] {
+          return (gradient ? gpu.dispatchGradient(settings) : gpu.dispatch(settings)) * 1e-3;
+        });
+        result.output = gradient ? "gradient" : "value";
+        report.results.push_back(result);
+      }
     }
   }
   settings.hash = NoiseHash::Fast;
-  note("cpu_1");
-  report.results.push_back(
-      measure("cpu_1", options, [&] { return secondsOf([&] { evaluateCpu(settings, points, values, 1); }); }));
-  note("cpu_all");
-  report.results.push_back(
-      measure("cpu_all", options, [&] { return secondsOf([&] { evaluateCpu(settings, points, values, 0); }); }));
+  for (unsigned threads : {1u, 0u}) {
+    const std::string method = threads == 1 ? "cpu_1" : "cpu_all";
+    note(method);
+    report.results.push_back(
+        measure(method, options, [&] { return secondsOf([&] { evaluateCpu(settings, points, values, threads); }); }));
+  }
+  gradients.resize(points.size());
+  for (unsigned threads : {1u, 0u}) {
+    const std::string method = threads == 1 ? "cpu_1" : "cpu_all";
+    note(method + " gradient");
+    NoiseBenchResult result = measure(
+        method, options, [&] { return secondsOf([&] { evaluateCpuGradient(settings, points, gradients, threads); }); });
+    result.output = "gradient";
+    report.results.push_back(result);
+  }
 
   // libnoise's defaults are fBm-like (lacunarity 2, persistence 0.5); only the octave count
   // is set, to match ours. Its octave limit is 30.

@@ -1,5 +1,6 @@
 // `planet bench noise`: octave evaluations per second of the GPU compute path (both hashes),
-// the CPU reference (one thread, all threads) and libnoise, on the same points in one run.
+// the CPU reference (one thread, all threads) and libnoise, on the same points in one run; the
+// GPU and CPU paths also with the analytic gradient (value and gradient per point).
 #pragma once
 
 #include <cstdint>
@@ -22,7 +23,8 @@ struct NoiseBenchOptions {
 };
 
 struct NoiseBenchResult {
-  std::string method;  // gpu_fast, gpu_reference, cpu_1, cpu_all, libnoise_perlin, libnoise_ridged
+  std::string method;            // gpu_fast, gpu_reference, cpu_1, cpu_all, libnoise_perlin, libnoise_ridged
+  std::string output = "value";  // value, or gradient: value and gradient (libnoise: value only)
   int octaves = 0;
   double medianMevalsPerS = 0.0;  // million point-octave evaluations per second
   double minMevalsPerS = 0.0;
@@ -35,7 +37,7 @@ struct NoiseBenchReport {
   size_t points = 0;
   unsigned cpuThreads = 0;
   std::vector<NoiseBenchResult> results;
-  double rate(const std::string& method) const;  // median, 0 if absent
+  double rate(const std::string& method, const std::string& output = "value") const;  // median, 0 if absent
   nlohmann::json toJson() const;
   std::string table() const;
 };

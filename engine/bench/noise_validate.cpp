@@ -51,6 +51,16 @@ ParityStats compareValues(const std::vector<float>& gpu, const std::vector<float
   return s;
 }
 
+ParityStats compareGradients(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu) {
+  auto flatten = [](const std::vector<glm::vec4>& v) {
+    std::vector<float> out;
+    out.reserve(4 * v.size());
+    for (const glm::vec4& g : v) out.insert(out.end(), {g.x, g.y, g.z, g.w});
+    return out;
+  };
+  return compareValues(flatten(gpu), flatten(cpu));
+}
+
 bool ParityPolicy::accepts(const ParityStats& stats) const {
   if (stats.count == 0 || stats.nonFinite != 0) return false;
   if (bitIdentical) return stats.identical == stats.count;
@@ -141,6 +151,10 @@ nlohmann::json ValidationReport::toJson() const {
                           {"max_ulp", r.stats.maxUlp},
                           {"fraction_identical", r.stats.fractionIdentical()},
                           {"non_finite", r.stats.nonFinite},
+                          {"gradient_max_abs_error", r.gradientStats.maxAbsError},
+                          {"gradient_max_ulp", r.gradientStats.maxUlp},
+                          {"gradient_fraction_identical", r.gradientStats.fractionIdentical()},
+                          {"gradient_non_finite", r.gradientStats.nonFinite},
                           {"pass", r.pass}});
   }
   return j;
@@ -148,13 +162,16 @@ nlohmann::json ValidationReport::toJson() const {
 
 std::string ValidationReport::table() const {
   std::string out = fmt::format("device: {} ({})\npolicy: {}\n\n", device, driver, policy.description);
-  out += fmt::format("{:<8} {:<9} {:<52} {:>8} {:>11} {:>8} {:>10}  {}\n", "type", "hash", "parameters", "points",
-                     "max|err|", "max ULP", "identical", "result");
+  // The grad columns: the value with gradient variant, its four components together.
+  out += fmt::format("{:<8} {:<9} {:<52} {:>8} {:>11} {:>8} {:>10} {:>11} {:>8} {:>10}  {}\n", "type", "hash",
+                     "parameters", "points", "max|err|", "max ULP", "identical", "grad|err|", "grad ULP", "grad ident",
+                     "result");
   for (const ValidationResult& r : results) {
-    out +=
-        fmt::format("{:<8} {:<9} {:<52} {:>8} {:>11.3g} {:>8} {:>9.3f}%  {}\n", noiseTypeName(r.testCase.settings.type),
-                    noiseHashName(r.testCase.settings.hash), r.testCase.label, r.stats.count, r.stats.maxAbsError,
-                    r.stats.maxUlp, 100.0 * r.stats.fractionIdentical(), r.pass ? "ok" : "FAIL");
+    out += fmt::format("{:<8} {:<9} {:<52} {:>8} {:>11.3g} {:>8} {:>9.3f}% {:>11.3g} {:>8} {:>9.3f}%  {}\n",
+                       noiseTypeName(r.testCase.settings.type), noiseHashName(r.testCase.settings.hash),
+                       r.testCase.label, r.stats.count, r.stats.maxAbsError, r.stats.maxUlp,
+                       100.0 * r.stats.fractionIdentical(), r.gradientStats.maxAbsError, r.gradientStats.maxUlp,
+                       100.0 * r.gradientStats.fractionIdentical(), r.pass ? "ok" : "FAIL");
   }
   size_t passed = 0;
   for (const ValidationResult& r : results) passed += r.pass;
@@ -173,6 +190,7 @@ ValidationReport runValidation(vk::Context& context, size_t pointsPerCase,
   const std::vector<glm::vec3> nearPoints = validationPoints(pointsPerCase, false, 1);
   const std::vector<glm::vec3> farPoints = validationPoints(pointsPerCase, true, 2);
   std::vector<float> gpuValues(pointsPerCase), cpuValues(pointsPerCase);
+  std::vector<glm::vec4> gpuGradients(pointsPerCase), cpuGradients(pointsPerCase);
   const std::vector<ValidationCase> cases = validationCases();
   bool farLoaded = false;
   gpuNoise.setPoints(nearPoints);
@@ -186,8 +204,12 @@ ValidationReport runValidation(vk::Context& context, size_t pointsPerCase,
     gpuNoise.dispatch(testCase.settings);
     gpuNoise.readValues(gpuValues);
     evaluateCpu(testCase.settings, points, cpuValues, 0);
-    ValidationResult result{testCase, compareValues(gpuValues, cpuValues), false};
-    result.pass = report.policy.accepts(result.stats);
+    gpuNoise.dispatchGradient(testCase.settings);
+    gpuNoise.readGradients(gpuGradients);
+    evaluateCpuGradient(testCase.settings, points, cpuGradients, 0);
+    ValidationResult result{testCase, compareValues(gpuValues, cpuValues), compareGradients(gpuGradients, cpuGradients),
+                            false};
+    result.pass = report.policy.accepts(result.stats) && report.policy.accepts(result.gradientStats);
     report.results.push_back(result);
     if (progress) progress(c + 1, cases.size());
   }

@@ -1,5 +1,6 @@
 // `planet validate`: the compute shader against the CPU reference for every noise type, both
-// hashes and several parameter sets, with per-case error statistics and a device policy.
+// hashes and several parameter sets, the value and the value with gradient, with per-case error
+// statistics and a device policy.
 #pragma once
 
 #include <cstdint>
@@ -31,6 +32,8 @@ struct ParityStats {
 // Distance in units in the last place between two floats (0 for equal bits; +0/-0 are 1 apart).
 uint64_t ulpDistance(float a, float b);
 ParityStats compareValues(const std::vector<float>& gpu, const std::vector<float>& cpu);
+// Every component of values with gradients (value, d/dx, d/dy, d/dz) compared as above.
+ParityStats compareGradients(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu);
 
 // What a device must achieve. Lavapipe runs the same LLVM code paths as the reference, so it
 // must agree bit for bit; other drivers may contract multiply-adds, so they get a tolerance.
@@ -56,8 +59,9 @@ std::vector<glm::vec3> validationPoints(size_t count, bool far, uint32_t seed);
 
 struct ValidationResult {
   ValidationCase testCase;
-  ParityStats stats;
-  bool pass = false;
+  ParityStats stats;          // the value (noise_eval's value variant)
+  ParityStats gradientStats;  // every component of the gradient variant: value, d/dx, d/dy, d/dz
+  bool pass = false;          // both within the policy
 };
 
 struct ValidationReport {

@@ -3,6 +3,7 @@
 #include "noise/noise_cpu.h"
 
 #include <algorithm>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -20,11 +21,12 @@ NoiseKernel<Real> makeKernel(const NoiseSettings& settings) {
   return kernel;
 }
 
-}  // namespace
-
-void evaluateCpu(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out,
-                 unsigned threads) {
-  if (out.size() < points.size()) throw Error("evaluateCpu: output span smaller than the point count");
+// Evaluates `point(kernel, params, p)` at every point into out, on `threads` threads (0: one per
+// hardware thread; at least 1,024 points a thread).
+template <typename Out, typename PointFn>
+void evaluatePoints(const char* what, const NoiseSettings& settings, std::span<const glm::vec3> points,
+                    std::span<Out> out, unsigned threads, PointFn point) {
+  if (out.size() < points.size()) throw Error(std::string(what) + ": output span smaller than the point count");
   const gpu::NoiseParams params = toNoiseParams(settings);
   const NoiseKernel<float> kernel = makeKernel<float>(settings);
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -32,7 +34,7 @@ void evaluateCpu(const NoiseSettings& settings, std::span<const glm::vec3> point
 
   auto run = [&](size_t begin, size_t end) {
     NoiseKernel<float> local = kernel;
-    for (size_t i = begin; i < end; ++i) out[i] = local.evaluateNoise(params, points[i]);
+    for (size_t i = begin; i < end; ++i) out[i] = point(local, params, points[i]);
   };
   if (threads <= 1) {
     run(0, points.size());
@@ -48,6 +50,16 @@ void evaluateCpu(const NoiseSettings& settings, std::span<const glm::vec3> point
   for (std::thread& w : workers) w.join();
 }
 
+}  // namespace
+
+void evaluateCpu(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out,
+                 unsigned threads) {
+  evaluatePoints("evaluateCpu", settings, points, out, threads,
+                 [](NoiseKernel<float>& k, const gpu::NoiseParams& params, const glm::vec3& p) {
+                   return k.evaluateNoise(params, p);
+                 });
+}
+
 float evaluateCpu(const NoiseSettings& settings, const glm::vec3& point) {
   NoiseKernel<float> kernel = makeKernel<float>(settings);
   return kernel.evaluateNoise(toNoiseParams(settings), point);
@@ -56,6 +68,24 @@ float evaluateCpu(const NoiseSettings& settings, const glm::vec3& point) {
 double evaluateCpuDouble(const NoiseSettings& settings, const glm::dvec3& point) {
   NoiseKernel<double> kernel = makeKernel<double>(settings);
   return kernel.evaluateNoise(toNoiseParams(settings), point);
+}
+
+void evaluateCpuGradient(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<glm::vec4> out,
+                         unsigned threads) {
+  evaluatePoints("evaluateCpuGradient", settings, points, out, threads,
+                 [](NoiseKernel<float>& k, const gpu::NoiseParams& params, const glm::vec3& p) {
+                   return k.evaluateNoiseGradient(params, p);
+                 });
+}
+
+glm::vec4 evaluateCpuGradient(const NoiseSettings& settings, const glm::vec3& point) {
+  NoiseKernel<float> kernel = makeKernel<float>(settings);
+  return kernel.evaluateNoiseGradient(toNoiseParams(settings), point);
+}
+
+glm::dvec4 evaluateCpuGradientDouble(const NoiseSettings& settings, const glm::dvec3& point) {
+  NoiseKernel<double> kernel = makeKernel<double>(settings);
+  return kernel.evaluateNoiseGradient(toNoiseParams(settings), point);
 }
 
 }  // namespace planet::noise

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -21,22 +22,23 @@ constexpr uint32_t kBufferCount = 3;  // points, values, permutation (shaders/sh
 GpuNoise::GpuNoise(vk::Context& context) : context_(context) {
   static_assert(gpu::kNoiseBindingPoints == 0 && gpu::kNoiseBindingValues == 1 && gpu::kNoiseBindingPermutation == 2);
   setMaxPointsPerDispatch(SIZE_MAX);  // as many as the device's workgroup-count limit allows
-  // The default pipeline (fBm, fast hash) also owns the descriptor pool of set_.
-  pipelineFor(NoiseType::Fbm, NoiseHash::Fast);
+  // The default pipeline (fBm, fast hash, values) also owns the descriptor pool of set_.
+  pipelineFor(NoiseType::Fbm, NoiseHash::Fast, false);
   timer_.create(context_, 4);
   permutation_ = {context_, vk::createBuffer(context_, sizeof(PermutationTable), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                              vk::MemoryUsage::DeviceLocal)};
 }
 
 const vk::ComputePipeline& GpuNoise::setOwner() const {
-  return *pipelines_.at({uint32_t(NoiseType::Fbm), uint32_t(NoiseHash::Fast)});
+  return *pipelines_.at({uint32_t(NoiseType::Fbm), uint32_t(NoiseHash::Fast), 0u});
 }
 
-const vk::ComputePipeline& GpuNoise::pipelineFor(NoiseType type, NoiseHash hash) {
-  std::pair<uint32_t, uint32_t> key{uint32_t(type), uint32_t(hash)};
+const vk::ComputePipeline& GpuNoise::pipelineFor(NoiseType type, NoiseHash hash, bool gradient) {
+  std::tuple<uint32_t, uint32_t, uint32_t> key{uint32_t(type), uint32_t(hash), gradient ? 1u : 0u};
   auto found = pipelines_.find(key);
   if (found != pipelines_.end()) return *found->second;
-  const uint32_t specialization[] = {key.first, key.second};
+  // constant_id 0, 1, 2 of noise_eval.comp.
+  const uint32_t specialization[] = {std::get<0>(key), std::get<1>(key), std::get<2>(key)};
   vk::Owned<vk::ComputePipeline> pipeline(
       context_, vk::createComputePipeline(context_, kSpv_noise_eval_comp, kBufferCount, sizeof(gpu::NoiseParams),
                                           specialization, 1));
@@ -50,14 +52,11 @@ void GpuNoise::setPoints(std::span<const glm::vec3> points) {
     points_.reset();
     values_.reset();
     capacity_ = 0;
+    outputBytes_ = 0;
     points_ = {context_, vk::createBuffer(context_, points.size() * sizeof(glm::vec4),
                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)};
-    values_ = {context_, vk::createBuffer(context_, points.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                          vk::MemoryUsage::DeviceLocal)};
     capacity_ = points.size();
-    VK_CHECK(vkResetDescriptorPool(context_.device, setOwner().descriptorPool, 0));
-    const vk::Buffer* buffers[kBufferCount] = {&*points_, &*values_, &*permutation_};
-    set_ = vk::allocateStorageSet(context_, setOwner(), buffers);
+    reserveOutput(points.size() * sizeof(float));
   }
   // Padded to vec4: on lavapipe one 16-byte load per point beats three 4-byte gathers
   // (measured +12 % throughput at 1 octave).
@@ -67,6 +66,23 @@ void GpuNoise::setPoints(std::span<const glm::vec3> points) {
   count_ = points.size();
 }
 
+void GpuNoise::reserveOutput(size_t bytes) {
+  if (bytes <= outputBytes_) return;
+  values_.reset();
+  outputBytes_ = 0;
+  values_ = {context_,
+             vk::createBuffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)};
+  outputBytes_ = bytes;
+  writeSet();
+}
+
+void GpuNoise::writeSet() {
+  // Every earlier submission has completed (submitAndWait), so the old set is free to go.
+  VK_CHECK(vkResetDescriptorPool(context_.device, setOwner().descriptorPool, 0));
+  const vk::Buffer* buffers[kBufferCount] = {&*points_, &*values_, &*permutation_};
+  set_ = vk::allocateStorageSet(context_, setOwner(), buffers);
+}
+
 void GpuNoise::uploadPermutation(uint32_t seed) {
   if (permutationSeed_ == int64_t(seed)) return;
   const PermutationTable& table = permutationTable(seed);
@@ -74,15 +90,20 @@ void GpuNoise::uploadPermutation(uint32_t seed) {
   permutationSeed_ = seed;
 }
 
-double GpuNoise::dispatch(const NoiseSettings& settings) {
+double GpuNoise::dispatch(const NoiseSettings& settings) { return dispatchVariant(settings, false); }
+
+double GpuNoise::dispatchGradient(const NoiseSettings& settings) { return dispatchVariant(settings, true); }
+
+double GpuNoise::dispatchVariant(const NoiseSettings& settings, bool gradient) {
   if (count_ == 0) throw Error("GpuNoise::dispatch before setPoints");
+  reserveOutput(count_ * (gradient ? sizeof(glm::vec4) : sizeof(float)));
   gpu::NoiseParams params = toNoiseParams(settings);
   if (settings.hash == NoiseHash::Reference)
     uploadPermutation(settings.seed);
   else if (permutationSeed_ < 0)
     uploadPermutation(0);  // the fast hash never reads the table, but the binding must be valid
   params.count = uint32_t(count_);
-  const vk::ComputePipeline& pipeline = pipelineFor(settings.type, settings.hash);
+  const vk::ComputePipeline& pipeline = pipelineFor(settings.type, settings.hash, gradient);
 
   const size_t pointsPerDispatch = maxPointsPerDispatch_;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
@@ -101,6 +122,7 @@ double GpuNoise::dispatch(const NoiseSettings& settings) {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   });
+  lastDispatch_ = gradient ? 1 : 0;
   return timer_.results(context_).front().milliseconds;
 }
 
@@ -112,13 +134,27 @@ void GpuNoise::setMaxPointsPerDispatch(size_t points) {
 
 void GpuNoise::readValues(std::span<float> out) {
   if (out.size() < count_) throw Error("GpuNoise::readValues: output span smaller than the point count");
+  if (lastDispatch_ == 1) throw Error("GpuNoise::readValues after dispatchGradient (use readGradients)");
   vk::readbackBuffer(context_, *values_, out.data(), count_ * sizeof(float));
+}
+
+void GpuNoise::readGradients(std::span<glm::vec4> out) {
+  if (out.size() < count_) throw Error("GpuNoise::readGradients: output span smaller than the point count");
+  if (lastDispatch_ != 1) throw Error("GpuNoise::readGradients without a dispatchGradient");
+  vk::readbackBuffer(context_, *values_, out.data(), count_ * sizeof(glm::vec4));
 }
 
 void GpuNoise::evaluate(const NoiseSettings& settings, std::span<const glm::vec3> points, std::span<float> out) {
   setPoints(points);
   dispatch(settings);
   readValues(out);
+}
+
+void GpuNoise::evaluateGradient(const NoiseSettings& settings, std::span<const glm::vec3> points,
+                                std::span<glm::vec4> out) {
+  setPoints(points);
+  dispatchGradient(settings);
+  readGradients(out);
 }
 
 }  // namespace planet::noise

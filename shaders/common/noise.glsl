@@ -96,8 +96,11 @@ real wrapDomain(real x) {
 
 vec3 wrapPoint(vec3 p) { return vec3(wrapDomain(p.x), wrapDomain(p.y), wrapDomain(p.z)); }
 
-// N(p) for a p derived from a wrapped point (wrapPoint, then scaled by at most 8^31).
-real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
+// The simplex around p (a point derived from a wrapped point): p's offsets d0..d3 from its four
+// corners and their gradient indices g. simplexWrapped and simplexWrappedGradient both start here,
+// so the value and the value with gradient pick the same corners and gradients.
+void simplexCorners(vec3 p, uvec3 shift, uint hashKind, uint seedMix, OUT(vec3) d0, OUT(vec3) d1, OUT(vec3) d2,
+                    OUT(vec3) d3, OUT(uvec4) g) {
   PRECISE real x = p.x;
   PRECISE real y = p.y;
   PRECISE real z = p.z;
@@ -155,10 +158,22 @@ real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
     g2 = fastGradient((i2 != 0u ? x1h : x0h) + (j2 != 0u ? y1h : y0h) + (k2 != 0u ? z1h : z0h));
     g3 = fastGradient(x1h + y1h + z1h);
   }
-  PRECISE real n0 = cornerContribution(g0, x0, y0, z0);
-  PRECISE real n1 = cornerContribution(g1, x1, y1, z1);
-  PRECISE real n2 = cornerContribution(g2, x2, y2, z2);
-  PRECISE real n3 = cornerContribution(g3, x3, y3, z3);
+  d0 = vec3(x0, y0, z0);
+  d1 = vec3(x1, y1, z1);
+  d2 = vec3(x2, y2, z2);
+  d3 = vec3(x3, y3, z3);
+  g = uvec4(g0, g1, g2, g3);
+}
+
+// N(p) for a p derived from a wrapped point (wrapPoint, then scaled by at most 8^31).
+real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
+  vec3 d0, d1, d2, d3;
+  uvec4 g;
+  simplexCorners(p, shift, hashKind, seedMix, d0, d1, d2, d3, g);
+  PRECISE real n0 = cornerContribution(g.x, d0.x, d0.y, d0.z);
+  PRECISE real n1 = cornerContribution(g.y, d1.x, d1.y, d1.z);
+  PRECISE real n2 = cornerContribution(g.z, d2.x, d2.y, d2.z);
+  PRECISE real n3 = cornerContribution(g.w, d3.x, d3.y, d3.z);
   return kNoiseScale * (n0 + n1 + n2 + n3);
 }
 
@@ -479,5 +494,8 @@ real evaluateFbm(IN(NoiseParams) params, vec3 p) {
   OctaveWalk walk = plainWalk(params, p);
   return fbmNoise(params, walk);
 }
+
+// The same functions with their analytic gradients (value and gradient together).
+#include "common/noise_gradient.glsl"
 
 #endif
