@@ -30,19 +30,21 @@ uint gTableBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
-// Layer l's term at `offset` (sample minus tile anchor, metres), limited to the octaves this
-// level's texel spacing can show, the last one faded (octave_budget.h).
-float layerHeight(uint l, vec3 offset);
+// Layer l's noise value at `offset` (sample minus tile anchor, metres), limited to the octaves
+// this level's texel spacing can show, the last one faded (octave_budget.h).
+float layerNoise(uint l, vec3 offset);
 #define TERRAIN_UNROLLED_LAYERS
 #define TERRAIN_LAYER_COUNT kSpecLayerCount
-#define TERRAIN_LAYER_TERM(l, p, context) layerHeight(l, p)
+#define TERRAIN_LAYER_NOISE(l, p, context) layerNoise(l, p)
+#define TERRAIN_LAYER(l) layers[l]
+#define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 
-float layerHeight(uint l, vec3 offset) {
+float layerNoise(uint l, vec3 offset) {
   gPermutationBase = l * kNoisePermutationSize;
   NoiseParams params = terrainLayerParams(layers[l].noise, specLayerType(l), specLayerHash(l),
                                           level.budgets[l].octaves, level.budgets[l].lastOctaveWeight);
-  return layers[l].amplitudeM * rebasedLayerNoise(params, l, offset);
+  return rebasedLayerNoise(params, l, offset);
 }
 
 void main() {

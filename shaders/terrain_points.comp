@@ -25,15 +25,17 @@ uint gPermutationBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
-// Layer l's term at `offset` (sample minus anchor, metres), every octave of the layer.
-float layerTerm(uint l, vec3 offset);
+// Layer l's noise value at `offset` (sample minus anchor, metres), every octave of the layer.
+float layerNoise(uint l, vec3 offset);
 #define TERRAIN_LAYER_COUNT push.layerCount
-#define TERRAIN_LAYER_TERM(l, p, context) layerTerm(l, p)
+#define TERRAIN_LAYER_NOISE(l, p, context) layerNoise(l, p)
+#define TERRAIN_LAYER(l) layers[l]
+#define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 
-float layerTerm(uint l, vec3 offset) {
+float layerNoise(uint l, vec3 offset) {
   gPermutationBase = l * kNoisePermutationSize;
-  return layers[l].amplitudeM * rebasedLayerNoise(layers[l].noise, l, offset);
+  return rebasedLayerNoise(layers[l].noise, l, offset);
 }
 
 void main() {

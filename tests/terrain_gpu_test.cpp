@@ -52,8 +52,8 @@ TEST_F(TerrainGpu, HeightsMatchTheCpuFloatPathAndTheDoubleReference) {
   }
 }
 
-// Eight layers (the most the shaders hold) of every fractal type, alternating hashes: each layer
-// of the specialized pipeline must get its own type and hash.
+// Eight layers (the most the shaders hold) of every fractal type, alternating hashes, some shaped:
+// each layer of the specialized pipeline must get its own type, hash, curves and mask.
 TEST_F(TerrainGpu, SpecializedVertexHeightsMatchTheCpuForEveryTypeAndHash) {
   PlanetDescription planet = resolvePreset("moon");
   const NoiseLayer base = planet.layers[0];
@@ -71,8 +71,17 @@ TEST_F(TerrainGpu, SpecializedVertexHeightsMatchTheCpuForEveryTypeAndHash) {
     layer.noise.octaves = 6;
     layer.frequency = base.frequency * std::ldexp(1.0, int(l) - 3);
     layer.amplitudeM = 400.0 / (1.0 + l);
+    layer.transfer.clear();  // the base layer's shaping is not copied
+    layer.hypsometry.clear();
+    layer.mask.clear();
+    layer.maskCurve.clear();
     planet.layers.push_back(layer);
   }
+  // Shaped layers too: a transfer curve, a mask through a curve, and a mask by a masked layer.
+  planet.layers[2].transfer = {{-1.0, -0.5}, {0.0, 0.2}, {0.5, 0.3}, {1.0, 1.5}};
+  planet.layers[4].mask = "layer2";
+  planet.layers[4].maskCurve = {{-0.5, 0.0}, {1.5, 2.0}};
+  planet.layers[6].mask = "layer4";
   auto surface = [&](HeightSource source) {
     RenderSettings settings;
     settings.width = 160;

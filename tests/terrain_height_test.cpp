@@ -44,6 +44,14 @@ TEST(TerrainHeight, GreatCircleStepsCoverTheirDistanceInTheirBearing) {
 TEST(TerrainHeight, HeightIsScaledBasePlusTheLayerSum) {
   PlanetDescription earth = resolvePreset("earth");
   earth.heightScale = 1.5;
+  earth.baseHeightM = -2400.0;
+  for (NoiseLayer& layer : earth.layers) {  // unshaped: each term is amplitude times noise
+    layer.transfer.clear();
+    layer.hypsometry.clear();
+    layer.mask.clear();
+    layer.maskCurve.clear();
+    if (layer.amplitudeM == 0.0) layer.amplitudeM = 700.0;
+  }
   const glm::dvec3 d = directionFromLatLon(12.3, -45.6);
   double sum = earth.baseHeightM;
   for (const NoiseLayer& layer : earth.layers)

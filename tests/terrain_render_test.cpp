@@ -212,7 +212,7 @@ TEST_F(TerrainRender, GroundBelowTheRadiusSphereIsDrawnToTheHorizon) {
 
 TEST_F(TerrainRender, SameInputsGiveIdenticalImagesAndSeedsChangeThePlanet) {
   PlanetDescription planet = resolvePreset("earth");
-  const CameraPose camera{-5.0, 150.0, 4.0e5, 30.0, -45.0};
+  const CameraPose camera{36.0, -87.0, 4.0e5, 30.0, -45.0};  // land at seed 0, ocean at seed 1
   Rgba8Image first, second;
   {
     Renderer renderer(context(), planet, smallSettings(true));
@@ -429,7 +429,7 @@ TEST_F(TerrainRender, GoldenImages) {
     SunPose sun;
   } cases[] = {
       {"earth_orbit", "earth", {20.0, -30.0, 2.0e7, 0.0, -90.0}, {135.0, 35.0}},
-      {"earth_10km", "earth", {37.942, 163.707, 1.0e4, 90.0, -12.0}, {150.0, 35.0}},
+      {"earth_10km", "earth", {45.25, 82.6, 1.0e4, 90.0, -12.0}, {150.0, 35.0}},
       {"moon_ground", "moon", {-20.0, 40.0, 2.0, 0.0, -15.0}, {100.0, 12.0}},
       {"earth_ground_noon", "earth", {20.0, -30.0, 2.0, 90.0, 8.0}, {135.0, 55.0}},
       {"earth_ground_sunset", "earth", {20.0, -30.0, 2.0, 135.0, 3.0}, {135.0, 1.0}},

@@ -15,6 +15,7 @@
 
 #include "common/definitions.h"
 #include "shared/noise_params.h"
+#include "shared/terrain_params.h"
 
 namespace planet::noise {
 namespace kernel_detail {
@@ -37,7 +38,8 @@ struct NoiseKernel {
     const uint* permutation = nullptr;  // the layer's reference permutation table
     NoiseParams params{};               // its octave budget applied
     real amplitude = real(0);
-    real frequency = real(0);           // plain walks sample p · frequency
+    real frequency = real(0);                  // plain walks sample p · frequency
+    TerrainLayer shape{};                      // its curves and mask (the GPU's struct, in float)
   };
   const TerrainKernelLayer* terrainLayers = nullptr;
   uint terrainLayerCount = 0u;
@@ -45,19 +47,21 @@ struct NoiseKernel {
   // reference); 1: p is an offset from the anchor of the rebased octave tables (float path).
   uint terrainRebased = 0u;
 
-  // TERRAIN_LAYER_TERM of common/terrain_height.glsl.
-  real terrainLayerTerm(uint l, vec3 p, uint /*context: unused on the CPU*/) {
+  // TERRAIN_LAYER_NOISE of common/terrain_height.glsl.
+  real terrainLayerNoise(uint l, vec3 p, uint /*context: unused on the CPU*/) {
     const TerrainKernelLayer& layer = terrainLayers[l];
     permutation = layer.permutation;
-    if (terrainRebased != 0u) return layer.amplitude * rebasedLayerNoise(layer.params, l, p);
-    return layer.amplitude * evaluateNoise(layer.params, p * layer.frequency);
+    if (terrainRebased != 0u) return rebasedLayerNoise(layer.params, l, p);
+    return evaluateNoise(layer.params, p * layer.frequency);
   }
 
 #define OCTAVE_REMAINDER(layer, i) vec4(octaveRemainders[(layer)*kNoiseMaxOctaves + (i)])
 #define OCTAVE_SHIFT(layer, i) octaveShifts[(layer)*kNoiseMaxOctaves + (i)]
 #define PERM(i) permutation[i]
 #define TERRAIN_LAYER_COUNT terrainLayerCount
-#define TERRAIN_LAYER_TERM(l, p, context) terrainLayerTerm(l, p, context)
+#define TERRAIN_LAYER_NOISE(l, p, context) terrainLayerNoise(l, p, context)
+#define TERRAIN_LAYER(l) terrainLayers[l].shape
+#define TERRAIN_LAYER_AMPLITUDE(l) terrainLayers[l].amplitude
 #include "common/noise.glsl"
 #include "common/terrain_height.glsl"
 #include "common/surface_attributes.glsl"
@@ -65,7 +69,9 @@ struct NoiseKernel {
 #undef OCTAVE_SHIFT
 #undef PERM
 #undef TERRAIN_LAYER_COUNT
-#undef TERRAIN_LAYER_TERM
+#undef TERRAIN_LAYER_NOISE
+#undef TERRAIN_LAYER
+#undef TERRAIN_LAYER_AMPLITUDE
 };
 
 }  // namespace kernel_detail

@@ -50,7 +50,8 @@ constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m", "snow
                                            "deep_water", "shallow_water",  "beach",       "lowland",
                                            "highland",   "cliff",          "snow"};
 constexpr std::string_view kLayerKeys[] = {"name", "type", "octaves",   "lacunarity",   "H",          "offset", "gain",
-                                           "seed", "hash", "frequency", "wavelength_m", "amplitude_m"};
+                                           "seed", "hash", "frequency", "wavelength_m", "amplitude_m",
+                                           "transfer", "hypsometry", "mask", "mask_curve"};
 
 struct SchemeName {
   ColorScheme scheme;
@@ -153,6 +154,45 @@ StarDescription readStars(const Context& context, const toml::table& table) {
   return s;
 }
 
+// [[x, y], ...]: 2 to maxPoints points, x strictly increasing and in xRange, y in kCurveValueRange.
+std::vector<CurvePoint> readCurve(const Context& context, const TableReader& reader, std::string_view key,
+                                  Range xRange, size_t maxPoints) {
+  const toml::node* node = reader.find(key);
+  if (!node) return {};
+  const toml::array* array = node->as_array();
+  if (!array || array->size() < 2 || array->size() > maxPoints)
+    context.fail(lineOf(*node), fmt::format("'{}' must be an array of 2 to {} points [x, y], got {}", key, maxPoints,
+                                            array ? fmt::format("{} elements", array->size()) : typeName(*node)));
+  auto number = [&](const toml::node& element, const std::string& label, Range range) {
+    double value;
+    if (auto integer = element.as_integer())
+      value = double(integer->get());
+    else if (auto floating = element.as_floating_point())
+      value = floating->get();
+    else
+      context.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
+    if (!(value >= range.min && value <= range.max))
+      context.fail(lineOf(element),
+                   fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
+    return value;
+  };
+  std::vector<CurvePoint> points;
+  for (size_t i = 0; i < array->size(); ++i) {
+    const toml::node& element = *array->get(i);
+    const toml::array* pair = element.as_array();
+    if (!pair || pair->size() != 2)
+      context.fail(lineOf(element), fmt::format("{}[{}] must be a point [x, y], got {}", key, i,
+                                                pair ? fmt::format("{} elements", pair->size()) : typeName(element)));
+    CurvePoint point{number(*pair->get(0), fmt::format("{}[{}][0]", key, i), xRange),
+                     number(*pair->get(1), fmt::format("{}[{}][1]", key, i), kCurveValueRange)};
+    if (!points.empty() && !(point.x > points.back().x))
+      context.fail(lineOf(element), fmt::format("{}[{}][0] must be above the point before ({}), got {}", key, i,
+                                                formatNumber(points.back().x), formatNumber(point.x)));
+    points.push_back(point);
+  }
+  return points;
+}
+
 NoiseLayer readLayer(const Context& context, const toml::table& table) {
   TableReader reader(context, table, "[[layer]]", kLayerKeys);
   NoiseLayer layer;
@@ -181,6 +221,19 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
     context.fail(reader.line(), "missing key 'frequency' (or 'wavelength_m') in [[layer]]");
   layer.frequency = frequency ? *frequency : 1.0 / *wavelength;
   layer.amplitudeM = reader.requiredNumber("amplitude_m", kAmplitudeRangeM);
+  layer.transfer = readCurve(context, reader, "transfer", kCurveValueRange, kMaxCurvePoints);
+  layer.hypsometry = readCurve(context, reader, "hypsometry", kUnitRange, kMaxCurvePoints);
+  if (!layer.transfer.empty() && !layer.hypsometry.empty())
+    context.fail(lineOf(*reader.find("hypsometry")), "give either transfer or hypsometry in [[layer]], not both");
+  for (size_t i = 1; i < layer.hypsometry.size(); ++i)
+    if (layer.hypsometry[i].y < layer.hypsometry[i - 1].y)
+      context.fail(lineOf(*reader.find("hypsometry")),
+                   fmt::format("hypsometry values must not decrease with the area fraction, got {} after {}",
+                               formatNumber(layer.hypsometry[i].y), formatNumber(layer.hypsometry[i - 1].y)));
+  if (auto mask = reader.string("mask")) layer.mask = *mask;
+  layer.maskCurve = readCurve(context, reader, "mask_curve", kCurveValueRange, kMaxMaskCurvePoints);
+  if (!layer.maskCurve.empty() && layer.mask.empty())
+    context.fail(lineOf(*reader.find("mask_curve")), "mask_curve needs a mask (the name of an earlier layer)");
 
   try {
     noise::validateNoiseSettings(layer.noise);
@@ -210,6 +263,12 @@ std::vector<NoiseLayer> readLayers(const Context& context, const toml::table& ro
       if (layers[i].name == layers.back().name)
         context.fail(lines.back(),
                      fmt::format("duplicate layer name '{}' (first at line {})", layers[i].name, lines[i]));
+    const std::string& mask = layers.back().mask;
+    if (!mask.empty() && std::none_of(layers.begin(), layers.end() - 1, [&](const NoiseLayer& earlier) {
+          return earlier.name == mask;
+        }))
+      context.fail(lineOf(*element.as_table()->get("mask")),
+                   fmt::format("mask '{}' must name an earlier layer", shortened(mask)));
   }
   return layers;
 }
@@ -402,6 +461,17 @@ std::string canonicalForm(const PlanetDescription& d) {
         formatNumber(n.H), formatNumber(n.offset.value_or(noise::defaultOffset(n.type))),
         formatNumber(n.gain.value_or(noise::kDefaultGain)), n.seed, noise::noiseHashName(n.hash),
         formatNumber(l.frequency), formatNumber(l.amplitudeM));
+    // Only shaped layers add lines, so the hashes of unshaped planets stay as they were.
+    auto curve = [&](const char* key, const std::vector<CurvePoint>& points) {
+      if (points.empty()) return;
+      out += fmt::format("layer.{}.{}=", i, key);
+      for (const CurvePoint& point : points) out += fmt::format("{},{};", formatNumber(point.x), formatNumber(point.y));
+      out += "\n";
+    };
+    curve("transfer", l.transfer);
+    curve("hypsometry", l.hypsometry);
+    if (!l.mask.empty()) out += fmt::format("layer.{}.mask={}:{}\n", i, l.mask.size(), l.mask);
+    curve("mask_curve", l.maskCurve);
   }
   return out;
 }

@@ -25,11 +25,28 @@
 
 namespace planet {
 
+// A point of a layer's curve (shared/terrain_params.h): x strictly increasing along a curve.
+struct CurvePoint {
+  double x = 0.0;
+  double y = 0.0;
+  bool operator==(const CurvePoint&) const = default;
+};
+
+// A layer's shaping (terrain_height.glsl): its value is curve(noise) · mask, and amplitudeM
+// times that value is its term of the height. With neither curve nor mask the value is the noise.
 struct NoiseLayer {
   std::string name;            // unique within a planet, shown in logs and reports
   noise::NoiseSettings noise;  // type, octaves, lacunarity, H, offset, gain, seed, hash
   double frequency = 1.0;      // noise cycles per metre at octave 0 (noise input = p * frequency)
-  double amplitudeM = 1.0;     // metres of height per unit of noise value (negative inverts)
+  double amplitudeM = 1.0;     // metres of height per unit of the layer's value (negative inverts)
+  // Transfer curve, one of two kinds or none: `transfer` maps noise values to values directly;
+  // `hypsometry` gives (fraction of the sphere's area below, value) and the noise values are
+  // that seed's quantiles (planet/terrain_shape.h), so the layer has the same area statistics
+  // at every seed. Values non-decreasing in a hypsometry.
+  std::vector<CurvePoint> transfer;
+  std::vector<CurvePoint> hypsometry;
+  std::string mask;                   // name of an earlier layer whose value multiplies this one; empty: none
+  std::vector<CurvePoint> maskCurve;  // (that layer's value, factor); empty: the value itself
 };
 
 // How the renderer colours the ground; each scheme has its own default palette (defaultColors).
@@ -160,6 +177,9 @@ inline constexpr Range kWaveSlopeRange{0.0, 1.0};
 inline constexpr Range kMagnitudeRange{0.0, 9.0};
 inline constexpr Range kStarBrightnessRange{0.0, 1e3};
 inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
+inline constexpr size_t kMaxCurvePoints = 16;       // transfer and hypsometry points (gpu::kTerrainCurveKnots)
+inline constexpr size_t kMaxMaskCurvePoints = 8;    // mask curve points (gpu::kTerrainMaskKnots)
+inline constexpr Range kCurveValueRange{-1e5, 1e5};  // x and y of transfer and mask curves, y of hypsometries
 inline constexpr size_t kMaxNameBytes = 64;         // planet and layer names
 inline constexpr size_t kMaxPresetBytes = 1 << 20;  // a preset file larger than this is an error
 

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "noise/noise_settings.h"
 #include "noise/permutation.h"
+#include "planet/terrain_shape.h"
 #include "shared/terrain_params.h"
 #include "vk/context.h"
 
@@ -36,8 +37,7 @@ PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& plan
   std::vector<gpu::TerrainLayer> layers(gpu::kTerrainMaxLayers, gpu::TerrainLayer{});
   std::vector<uint32_t> permutations(size_t(gpu::kTerrainMaxLayers) * gpu::kNoisePermutationSize, 0u);
   for (size_t l = 0; l < planet.layers.size(); ++l) {
-    layers[l].noise = noise::toNoiseParams(planet.layers[l].noise);
-    layers[l].amplitudeM = float(planet.layers[l].amplitudeM);
+    layers[l] = terrainLayerShape(planet, l);
     const noise::PermutationTable& table = noise::permutationTable(planet.layers[l].noise.seed);
     std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
   }

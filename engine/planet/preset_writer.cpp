@@ -166,6 +166,17 @@ void writeLayer(Writer& w, const NoiseLayer& layer) {
   else
     w.key("frequency", layer.frequency);
   w.key("amplitude_m", layer.amplitudeM);
+  auto curve = [&](std::string_view key, const std::vector<CurvePoint>& points) {
+    if (points.empty()) return;
+    std::string text = "[";
+    for (size_t i = 0; i < points.size(); ++i)
+      text += fmt::format("{}[{}, {}]", i ? ", " : "", number(points[i].x), number(points[i].y));
+    w.key(key, text + "]");
+  };
+  curve("transfer", layer.transfer);
+  curve("hypsometry", layer.hypsometry);
+  if (!layer.mask.empty()) w.key("mask", quoted(layer.mask));
+  curve("mask_curve", layer.maskCurve);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "planet/octave_budget.h"
 #include "planet/terrain_kernel.h"
+#include "planet/terrain_shape.h"
 
 namespace planet {
 
@@ -68,13 +69,21 @@ TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet)
   }
   // What the omitted octaves can add: each weighs octaveWeight^i; bound a fractal's finer part
   // by twice its geometric tail (the multifractals multiply by signals of about 1..2).
+  // A curve scales that by at most its steepest slope (a monotone cubic stays within three times
+  // its steepest secant), a mask by its largest factor.
   double margin = 0.0;
-  for (const NoiseLayer& layer : planet.layers) {
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const NoiseLayer& layer = planet.layers[l];
     const OctaveBudget budget = octaveBudget(layer, spacing);
     const double weight = std::pow(layer.noise.lacunarity, -layer.noise.H);
     double tail = 0.0;
     for (int i = int(budget.octaves) - 1; i < layer.noise.octaves; ++i) tail += std::pow(weight, i);
-    margin += std::abs(layer.amplitudeM) * 2.0 * tail;
+    const gpu::TerrainLayer shape = terrainLayerShape(planet, l);
+    double steepest = shape.curveKnots > 0 ? 0.0 : 1.0;
+    for (uint32_t k = 0; k + 1 < shape.curveKnots; ++k)
+      steepest = std::max(steepest, 3.0 * std::abs(double(shape.knots[k + 1].y) - double(shape.knots[k].y)) /
+                                        (double(shape.knots[k + 1].x) - double(shape.knots[k].x)));
+    margin += std::abs(layer.amplitudeM) * 2.0 * tail * steepest * layerMaskBound(planet, l);
   }
   margin *= std::abs(planet.heightScale);
   return {std::min(0.0, (lowest - margin) * 1.1), std::max(0.0, (highest + margin) * 1.1)};

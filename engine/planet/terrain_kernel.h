@@ -1,7 +1,7 @@
 // A planet's noise stack prepared for the terrain height's C++ evaluations (the layer sum of
 // shaders/common/terrain_height.glsl inside noise::NoiseKernel): each layer's permutation table,
 // its parameters with the octave budget of `spacingM` applied, amplitude and frequency, in the
-// precision of the evaluation. Shared by the double reference (terrain_height.cpp) and the
+// precision of the evaluation, and its shaping (curves and mask, planet/terrain_shape.h). Shared by the double reference (terrain_height.cpp) and the
 // rebased float path (terrain_rebase.cpp).
 #pragma once
 
@@ -15,6 +15,7 @@
 #include "noise/permutation.h"
 #include "planet/octave_budget.h"
 #include "planet/planet_description.h"
+#include "planet/terrain_shape.h"
 #include "shared/terrain_params.h"
 
 namespace planet {
@@ -43,7 +44,8 @@ TerrainKernelLayers<Real> terrainKernelLayers(const PlanetDescription& planet, d
     const NoiseLayer& layer = planet.layers[l];
     auto& out = result.layers[l];
     out.permutation = noise::permutationTable(layer.noise.seed).data();
-    out.params = noise::toNoiseParams(layer.noise);
+    out.shape = terrainLayerShape(planet, l);
+    out.params = out.shape.noise;
     const OctaveBudget budget = octaveBudget(layer, spacingM);
     out.params.octaves = budget.octaves;
     out.params.lastOctaveWeight = budget.lastOctaveWeight;

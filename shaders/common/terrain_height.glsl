@@ -1,18 +1,21 @@
-// The terrain height of a planet, its noise stack summed (README, "Planets"):
-//   height = heightScale · (baseHeight + Σ_l amplitude_l · noise_l(p)),
+// The terrain height of a planet, its noise stack shaped and summed (README, "Planets"):
+//   value_l = curve_l(noise_l(p)) · mask_l(value of an earlier layer)
+//   height  = heightScale · (baseHeight + Σ_l amplitude_l · value_l),
 // written once for every place that evaluates it: the double reference (terrainHeightM,
 // engine/planet/terrain_height.cpp), the rebased float path (terrainHeightRebased,
 // engine/planet/terrain_rebase.cpp, and so the CPU height source), and the shaders
 // terrain_heights.comp and terrain_noise.vert (through terrain_vertex_surface.glsl),
 // patch_height.comp and terrain_points.comp. Common subset: definitions.glsl; include it after
-// noise.glsl (C++: noise_kernel.h does).
+// noise.glsl and shared/terrain_params.h (C++: noise_kernel.h does).
 //
 // The includer defines, before including:
-//   TERRAIN_LAYER_COUNT                the number of layers (at most kTerrainMaxLayers)
-//   TERRAIN_LAYER_TERM(l, p, context)  layer l's term amplitude_l · noise_l(p), through
-//                                      terrainLayerParams and rebasedLayerNoise below (or
-//                                      evaluateNoise for the double reference); `context` is
-//                                      what terrainHeightSum was given (the mesh: the ring)
+//   TERRAIN_LAYER_COUNT                 the number of layers (at most kTerrainMaxLayers)
+//   TERRAIN_LAYER_NOISE(l, p, context)  layer l's noise value at p, through terrainLayerParams
+//                                       and rebasedLayerNoise below (or evaluateNoise for the
+//                                       double reference); `context` is what terrainHeightSum
+//                                       was given (the mesh: the ring)
+//   TERRAIN_LAYER(l)                    layer l's TerrainLayer (its curves and mask are read)
+//   TERRAIN_LAYER_AMPLITUDE(l)          its amplitude in the evaluation's precision
 // and TERRAIN_UNROLLED_LAYERS where layer indices must be constants: a shader specialized on the
 // layers' types and hashes (terrain_layer_specialization.glsl) names a layer's type by its
 // index, and with constant indices its compiler folds each layer's branches away.
@@ -45,22 +48,74 @@ real rebasedLayerNoise(IN(NoiseParams) params, uint layer, vec3 offset) {
   return fractalNoise(params, walk);
 }
 
+// Monotone cubic Hermite curve through `count` knots of layer l from knots[first] (shared/
+// terrain_params.h), at x; its end values outside the knots. Continuous in value and slope, so a
+// curve leaves no crease in the terrain's shading along the level sets of the noise.
+real terrainCurve(uint l, uint first, uint count, real x) {
+  vec4 a = vec4(TERRAIN_LAYER(l).knots[first]);
+  if (x <= a.x) return a.y;
+  vec4 last = vec4(TERRAIN_LAYER(l).knots[first + count - 1u]);
+  if (x >= last.x) return last.y;
+  uint segment = first;
+  for (uint k = 1u; k + 1u < count; ++k)
+    if (x >= real(TERRAIN_LAYER(l).knots[first + k].x)) segment = first + k;
+  a = vec4(TERRAIN_LAYER(l).knots[segment]);
+  vec4 b = vec4(TERRAIN_LAYER(l).knots[segment + 1u]);
+  // A division, not a stored reciprocal: t must be 1 exactly at the next knot, or the value
+  // would step there by the reciprocal's rounding times the segment's rise.
+  PRECISE real width = b.x - a.x;
+  PRECISE real t = (x - a.x) / width;
+  PRECISE real t2 = t * t;
+  PRECISE real t3 = t2 * t;
+  PRECISE real rise = real(3.0f) * t2 - real(2.0f) * t3;  // h01; h00 = 1 - h01
+  PRECISE real startSlope = (t3 - real(2.0f) * t2 + t) * width;
+  PRECISE real endSlope = (t3 - t2) * width;
+  PRECISE real y = a.y * (real(1.0f) - rise) + b.y * rise + a.z * startSlope + b.z * endSlope;
+  return y;
+}
+
+// Layer l's value from its noise value and the value of the layer that masks it (ignored when
+// none does): the transfer curve, then the mask through the mask curve.
+real terrainLayerValue(uint l, real noiseValue, real maskSource) {
+  PRECISE real value = noiseValue;
+  if (TERRAIN_LAYER(l).curveKnots > 0u) value = terrainCurve(l, 0u, TERRAIN_LAYER(l).curveKnots, value);
+  if (TERRAIN_LAYER(l).maskLayer != kTerrainNoMask) {
+    PRECISE real mask = maskSource;
+    if (TERRAIN_LAYER(l).maskKnots > 0u) mask = terrainCurve(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, mask);
+    value = value * mask;
+  }
+  return value;
+}
+
+// One layer of terrainHeightSum: its value kept for the layers it masks, its term added. A mask
+// layer is always an earlier one (the parser's rule); any other index reads this layer's 0.
+#define TERRAIN_HEIGHT_STEP(l)                                                                        \
+  {                                                                                                   \
+    uint source = TERRAIN_LAYER(l).maskLayer < (l) ? TERRAIN_LAYER(l).maskLayer : (l);                 \
+    values[l] = terrainLayerValue(l, TERRAIN_LAYER_NOISE(l, p, context), values[source]);             \
+    sum += TERRAIN_LAYER_AMPLITUDE(l) * values[l];                                                    \
+  }
+
 // The height at p: the layers in order, each term added to the base as it comes, then scaled.
 real terrainHeightSum(real baseHeight, real heightScale, vec3 p, uint context) {
   PRECISE real sum = baseHeight;
+  real values[kTerrainMaxLayers];
+  for (uint i = 0u; i < kTerrainMaxLayers; ++i) values[i] = real(0.0f);
 #ifdef TERRAIN_UNROLLED_LAYERS
-  if (TERRAIN_LAYER_COUNT > 0u) sum += TERRAIN_LAYER_TERM(0u, p, context);
-  if (TERRAIN_LAYER_COUNT > 1u) sum += TERRAIN_LAYER_TERM(1u, p, context);
-  if (TERRAIN_LAYER_COUNT > 2u) sum += TERRAIN_LAYER_TERM(2u, p, context);
-  if (TERRAIN_LAYER_COUNT > 3u) sum += TERRAIN_LAYER_TERM(3u, p, context);
-  if (TERRAIN_LAYER_COUNT > 4u) sum += TERRAIN_LAYER_TERM(4u, p, context);
-  if (TERRAIN_LAYER_COUNT > 5u) sum += TERRAIN_LAYER_TERM(5u, p, context);
-  if (TERRAIN_LAYER_COUNT > 6u) sum += TERRAIN_LAYER_TERM(6u, p, context);
-  if (TERRAIN_LAYER_COUNT > 7u) sum += TERRAIN_LAYER_TERM(7u, p, context);
+  if (TERRAIN_LAYER_COUNT > 0u) TERRAIN_HEIGHT_STEP(0u)
+  if (TERRAIN_LAYER_COUNT > 1u) TERRAIN_HEIGHT_STEP(1u)
+  if (TERRAIN_LAYER_COUNT > 2u) TERRAIN_HEIGHT_STEP(2u)
+  if (TERRAIN_LAYER_COUNT > 3u) TERRAIN_HEIGHT_STEP(3u)
+  if (TERRAIN_LAYER_COUNT > 4u) TERRAIN_HEIGHT_STEP(4u)
+  if (TERRAIN_LAYER_COUNT > 5u) TERRAIN_HEIGHT_STEP(5u)
+  if (TERRAIN_LAYER_COUNT > 6u) TERRAIN_HEIGHT_STEP(6u)
+  if (TERRAIN_LAYER_COUNT > 7u) TERRAIN_HEIGHT_STEP(7u)
 #else
-  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) sum += TERRAIN_LAYER_TERM(l, p, context);
+  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) TERRAIN_HEIGHT_STEP(l)
 #endif
   return heightScale * sum;
 }
+
+#undef TERRAIN_HEIGHT_STEP
 
 #endif

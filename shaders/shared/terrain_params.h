@@ -28,14 +28,26 @@ GPU_CONST uint kTerrainSpecTypes = 1u;                       // + layer index
 GPU_CONST uint kTerrainSpecHashes = 1u + kTerrainMaxLayers;  // + layer index
 GPU_CONST uint kTerrainSpecCount = 1u + 2u * kTerrainMaxLayers;
 
+// A layer's shaping (README, "Planets"; shaders/common/terrain_height.glsl): its noise value v
+// goes through a transfer curve (none: v itself), is multiplied by a mask read from an earlier
+// layer's value through a mask curve, and the result, the layer's value, times amplitudeM is its
+// term. Curves are monotone cubic Hermite splines through knots (x, y, dy/dx at x, unused),
+// built on the CPU in double (planet/terrain_shape.h); outside the knots a curve holds its end
+// values.
+GPU_CONST uint kTerrainCurveKnots = 16u;   // transfer curve knots at most (knots[0 .. 15])
+GPU_CONST uint kTerrainMaskKnots = 8u;     // mask curve knots at most (knots[16 .. 23])
+GPU_CONST uint kTerrainKnots = kTerrainCurveKnots + kTerrainMaskKnots;
+GPU_CONST uint kTerrainNoMask = 0xffffffffu;
+
 struct TerrainLayer {
   NoiseParams noise;
-  float amplitudeM;  // metres per unit of noise
-  float pad0;
-  float pad1;
-  float pad2;
+  float amplitudeM;    // metres per unit of the layer's value
+  uint curveKnots;     // 0: no transfer curve, else 2 .. kTerrainCurveKnots
+  uint maskLayer;      // an earlier layer whose value masks this one, or kTerrainNoMask
+  uint maskKnots;      // 0: the mask is that layer's value itself, else 2 .. kTerrainMaskKnots
+  vec4 knots[kTerrainKnots];  // the transfer curve's, then (from kTerrainCurveKnots) the mask curve's
 };
-GPU_ASSERT_SIZE(TerrainLayer, 64)
+GPU_ASSERT_SIZE(TerrainLayer, 448)
 
 struct TerrainPointsPush {
   uint layerCount;
