@@ -86,6 +86,8 @@ void printTable(const PlanetDescription& planet, const std::string& preset, uint
   row("land in landmasses >= 10^6 km²", fixed(s.landInContinents, 3),
       fmt::format(">= {:.2f} (0.95)", t.landInContinentsMin));
   row("  landmasses, of those >= 10^6 km²", fmt::format("{}, {}", s.landmassCount, s.continentCount), "");
+  row("land holding half the height > 1 km", fixed(s.mountainConcentration, 3),
+      fmt::format("<= {:.2f} (belts)", t.mountainConcentrationMax));
   line(fmt::format("highest point {:.1f} m at {}", s.highest.heightM, latLonText(s.highest)));
   line(fmt::format("lowest point {:.1f} m at {}", s.lowest.heightM, latLonText(s.lowest)));
   line(
@@ -134,6 +136,7 @@ nlohmann::ordered_json statsJson(const PlanetDescription& planet, const ExportSo
   j["land_in_continents"] = number(s.landInContinents);
   j["landmass_count"] = s.landmassCount;
   j["continent_count"] = s.continentCount;
+  j["mountain_concentration"] = number(s.mountainConcentration);
   for (auto [name, p] : {std::pair{"highest", &s.highest}, std::pair{"lowest", &s.lowest}})
     j[name] = {{"height_m", p->heightM}, {"latitude_deg", p->latitudeDeg}, {"longitude_deg", p->longitudeDeg}};
   j["land_slope"] = {{"north_south_spacing_m", s.northSouthSpacingM},
@@ -149,7 +152,8 @@ nlohmann::ordered_json statsJson(const PlanetDescription& planet, const ExportSo
                   {"mean_ocean_depth_m", {t.meanOceanDepthMinM, t.meanOceanDepthMaxM}},
                   {"bimodal", true},
                   {"coastline_dimension", {t.coastlineDimensionMin, t.coastlineDimensionMax}},
-                  {"land_in_continents_min", t.landInContinentsMin}};
+                  {"land_in_continents_min", t.landInContinentsMin},
+                  {"mountain_concentration_max", t.mountainConcentrationMax}};
   return j;
 }
 

@@ -148,6 +148,34 @@ void landmasses(const std::vector<uint8_t>& land, const std::vector<double>& row
   s.landInContinents = big / std::max(total, 1e-9);
 }
 
+// The share of the land's area holding half of its height above kMountainBaseM.
+void mountainConcentration(std::span<const float> heights, const std::vector<double>& rowAreaKm2, uint32_t w,
+                           uint32_t h, TerrainStatistics& s) {
+  std::vector<std::pair<double, double>> above;  // (height above the base, area) of land pixels above it
+  double landArea = 0.0, volume = 0.0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const double v = heights[size_t(y) * w + x];
+      if (!(v > 0.0)) continue;
+      landArea += rowAreaKm2[y];
+      if (v <= kMountainBaseM) continue;
+      above.push_back({v - kMountainBaseM, rowAreaKm2[y]});
+      volume += (v - kMountainBaseM) * rowAreaKm2[y];
+    }
+  if (!(volume > 0.0)) {
+    s.mountainConcentration = kNaN;
+    return;
+  }
+  std::sort(above.begin(), above.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  double area = 0.0, held = 0.0;
+  for (const auto& [excess, pixelArea] : above) {
+    if (held >= 0.5 * volume) break;
+    held += excess * pixelArea;
+    area += pixelArea;
+  }
+  s.mountainConcentration = area / landArea;
+}
+
 // The land's slopes and their area-weighted percentiles.
 void landSlopes(std::span<const float> heights, const std::vector<uint8_t>& land, uint32_t w, uint32_t h,
                 double radiusM, TerrainStatistics& s) {
@@ -234,6 +262,7 @@ TerrainStatistics computeTerrainStatistics(std::span<const float> heightsM, uint
 
   coastlineDimension(land, w, h, s);
   landmasses(land, rowAreaKm2, w, h, s);
+  mountainConcentration(heightsM, rowAreaKm2, w, h, s);
 
   for (auto [index, point] : {std::pair{highest, &s.highest}, std::pair{lowest, &s.lowest}}) {
     const glm::dvec2 latLon = equirectPixelCentreDeg(uint32_t(index % w), uint32_t(index / w), w, h);

@@ -46,6 +46,7 @@ inline constexpr double kHypsometryBinM = 500.0;
 inline constexpr int kHypsometryBins = 40;  // -11000 .. 9000 m
 inline constexpr double kContinentMinKm2 = 1e6;
 inline constexpr int kCoastBoxSizes = 6;  // 2, 4, 8, 16, 32, 64 pixels
+inline constexpr double kMountainBaseM = 1000.0;
 
 struct GridPoint {
   double heightM = 0.0;
@@ -72,6 +73,12 @@ struct TerrainStatistics {
   uint64_t landmassCount = 0;     // landmasses of any size
   uint64_t continentCount = 0;    // of those, the ones of at least 10^6 km^2
 
+  // Mountains in belts, not everywhere (issue 10): the share of the land's area that holds half
+  // of its height above kMountainBaseM (area-weighted, the highest pixels first). Small when the
+  // relief stands in ranges, about half when it is spread evenly over the land. NaN without
+  // land above kMountainBaseM.
+  double mountainConcentration = 0.0;
+
   GridPoint highest, lowest;
 
   double northSouthSpacingM = 0.0;                        // pi R / H, R the planet's radius
@@ -92,6 +99,7 @@ struct TerrainTargets {
   double meanOceanDepthMinM = 3000.0, meanOceanDepthMaxM = 4500.0;
   double coastlineDimensionMin = 1.12, coastlineDimensionMax = 1.35;
   double landInContinentsMin = 0.80;
+  double mountainConcentrationMax = 0.10;  // this project's bound (the earth preset before issue 10: 0.12)
 };
 inline constexpr TerrainTargets kEarthTerrainTargets{};
 
