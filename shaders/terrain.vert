@@ -1,5 +1,5 @@
 #version 450
-// Terrain vertices: everything was computed by terrain_heights.comp and terrain_normals.comp;
+// Terrain vertices: everything was computed by terrain_heights.comp (heights and normals);
 // this only places the vertex relative to the camera (local frame, float offsets from the
 // anchor) and projects it. Below sea level the ground is drawn at the water surface (the ocean
 // colour comes from the fragment shader until the water pass exists).

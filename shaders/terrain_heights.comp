@@ -1,10 +1,12 @@
 #version 450
-// Heights of the clipmap vertices this frame (issue 3, "Heights by compute"): for every vertex
-// of the drawn ring range (plus one ring on each side for the normals, plus the pole) it
-// evaluates the planet's noise stack through the rebased octave tables, limited to the
-// octaves its ring's spacing can show (RingBudget), and stores the vertex's position as an
-// offset from the anchor in the local frame. See shaders/shared/render_params.h for frames;
-// the per-vertex functions are in terrain_vertex_surface.glsl.
+// Heights and normals of the clipmap vertices this frame (issue 3, "Heights by compute"): for
+// every vertex of the drawn ring range (plus one ring on each side, plus the pole) it evaluates
+// the planet's noise stack through the rebased octave tables, limited to the octaves its ring's
+// spacing can show (RingBudget), and stores the vertex's position as an offset from the anchor
+// in the local frame, and its normal from the stack's analytic gradient (issue 19: one
+// evaluation, where a normals pass over the neighbours' positions needed them all first).
+// See shaders/shared/render_params.h for frames; the per-vertex functions are in
+// terrain_vertex_surface.glsl.
 // The layers' count, types and hashes are specialization constants (one pipeline per planet),
 // so that lavapipe, which runs every side of a branch, evaluates only each layer's own fractal.
 #extension GL_GOOGLE_include_directive : require
@@ -16,6 +18,7 @@
 layout(local_size_x = kTerrainComputeWorkgroupSize) in;
 
 layout(std430, set = 0, binding = kRenderBindingSurface) writeonly buffer Surface { vec4 surface[]; };
+layout(std430, set = 0, binding = kRenderBindingNormals) writeonly buffer Normals { vec4 normals[]; };
 layout(std430, set = 0, binding = kRenderBindingAttributes) writeonly buffer Attributes { vec4 attributes[]; };
 
 void main() {
@@ -30,10 +33,13 @@ void main() {
   MeshVertex v = mesh[index];
   vec3 offsetLocal = surfaceOffsetLocal(v);
   vec3 offsetPlanet = mat3(frame.localToPlanet) * offsetLocal;
-  vec4 surfaceValue = vec4(offsetLocal, surfaceHeight(offsetPlanet, floatBitsToUint(v.polar.z)));
+  vec4 heightGradient = surfaceHeightGradient(offsetPlanet, floatBitsToUint(v.polar.z));
+  vec4 surfaceValue = vec4(offsetLocal, heightGradient.x);
+  vec4 normalValue = vec4(surfaceNormal(heightGradient, v.direction.xyz), 0.0f);
   vec4 attributeValue = surfaceAttributes(offsetPlanet);
   if (inRange) {
     surface[index] = surfaceValue;
+    normals[index] = normalValue;
     attributes[index] = attributeValue;
   }
 }

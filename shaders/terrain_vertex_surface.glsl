@@ -40,6 +40,8 @@ vec3 surfaceOffsetLocal(MeshVertex v) {
 // TERRAIN_SPECIALIZED_LAYERS (and includes terrain_layer_specialization.glsl first) gets the
 // layers' count, types and hashes from specialization constants; otherwise from the buffer.
 float layerNoise(uint l, vec3 offsetPlanet, uint ring);
+// The same with its gradient with respect to offsetPlanet (per metre, planet frame).
+vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring);
 #ifdef TERRAIN_SPECIALIZED_LAYERS
 #define TERRAIN_UNROLLED_LAYERS
 #define TERRAIN_LAYER_COUNT kSpecLayerCount
@@ -47,12 +49,14 @@ float layerNoise(uint l, vec3 offsetPlanet, uint ring);
 #define TERRAIN_LAYER_COUNT push.layerCount
 #endif
 #define TERRAIN_LAYER_NOISE(l, p, ring) layerNoise(l, p, ring)
+#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, ring) layerNoiseGradient(l, p, ring)
 #define TERRAIN_LAYER(l) layers[l]
 #define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 #include "common/surface_attributes.glsl"
 
-float layerNoise(uint l, vec3 offsetPlanet, uint ring) {
+// Layer l's noise parameters with ring `ring`'s octaves; selects its permutation table.
+NoiseParams layerParams(uint l, uint ring) {
   gPermutationBase = l * kNoisePermutationSize;
 #ifdef TERRAIN_SPECIALIZED_LAYERS
   uint type = specLayerType(l);
@@ -61,9 +65,15 @@ float layerNoise(uint l, vec3 offsetPlanet, uint ring) {
   uint type = layers[l].noise.type;
   uint hash = layers[l].noise.hash;
 #endif
-  NoiseParams params = terrainLayerParams(layers[l].noise, type, hash, budgets[ring].octaves[l],
-                                          budgets[ring].lastOctaveWeight[l]);
-  return rebasedLayerNoise(params, l, offsetPlanet);
+  return terrainLayerParams(layers[l].noise, type, hash, budgets[ring].octaves[l], budgets[ring].lastOctaveWeight[l]);
+}
+
+float layerNoise(uint l, vec3 offsetPlanet, uint ring) {
+  return rebasedLayerNoise(layerParams(l, ring), l, offsetPlanet);
+}
+
+vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring) {
+  return rebasedLayerNoiseGradient(layerParams(l, ring), l, offsetPlanet);
 }
 
 // Height in metres above the radius sphere at the point `offsetPlanet` (planet frame, metres
@@ -72,13 +82,27 @@ float surfaceHeight(vec3 offsetPlanet, uint ring) {
   return terrainHeightSum(push.baseHeightM, push.heightScale, offsetPlanet, ring);
 }
 
-// Displaced position of mesh vertex `index` minus the anchor, local frame (what
-// terrain_normals.comp reads back from the surface buffer).
-vec3 surfacePosition(uint index) {
-  MeshVertex v = mesh[index];
-  vec3 offsetLocal = surfaceOffsetLocal(v);
-  float height = surfaceHeight(mat3(frame.localToPlanet) * offsetLocal, floatBitsToUint(v.polar.z));
-  return offsetLocal + height * v.direction.xyz;
+// The height and its gradient (per metre, planet frame) at `offsetPlanet`, with the octaves of
+// ring `ring`: the height bit-identical to surfaceHeight's.
+vec4 surfaceHeightGradient(vec3 offsetPlanet, uint ring) {
+  return terrainHeightGradientSum(push.baseHeightM, push.heightScale, offsetPlanet, ring);
+}
+
+// The unit normal (local frame) of the displaced surface r = (R + h) up at a vertex with sphere
+// normal `up` (local frame), from h and its gradient g at the sea-sphere point (planet frame):
+// h varies over the sphere of radius R, so a step R dθ moves r by (R + h) dθ sideways and by
+// R g_t dθ up, g_t the part of g tangent to the sphere; n ∝ up − R / (R + h) · g_t. The same
+// formula on the CPU (reference/terrain_surface_cpu.cpp).
+vec3 surfaceNormal(vec4 heightGradient, vec3 up) {
+  // Precise: the compute and the vertex-shader sources must shade alike, and without it the
+  // compiler may fuse these differently in the two stages.
+  // Planet to local: the transpose of the rotation localToPlanet.
+  PRECISE vec3 gradientLocal = gradientOf(heightGradient) * mat3(frame.localToPlanet);
+  PRECISE vec3 tangent = gradientLocal - dot(gradientLocal, up) * up;
+  float radius = frame.camera.y;
+  PRECISE float tilt = radius / (radius + heightGradient.x);
+  PRECISE vec3 normal = up - tilt * tangent;
+  return normalize(normal);
 }
 
 // Shading attributes at `offsetPlanet` (common/surface_attributes.glsl).

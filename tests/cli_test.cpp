@@ -605,7 +605,7 @@ TEST(Cli, ValidatePassesAndWritesJson) {
   nlohmann::json j = nlohmann::json::parse(readFile(json));
   EXPECT_TRUE(j["pass"].get<bool>());
   EXPECT_FALSE(j["device"].get<std::string>().empty());
-  ASSERT_EQ(j["cases"].size(), 40u);  // 2 hashes x (6 fractals x 3 parameter sets + simplex x 2)
+  ASSERT_EQ(j["cases"].size(), 52u);  // 2 hashes x (8 fractals x 3 parameter sets + simplex x 2)
   for (const auto& c : j["cases"]) {
     EXPECT_EQ(c["points"].get<int>(), 2000);
     EXPECT_EQ(c["fraction_identical"].get<double>(), 1.0) << c.dump();

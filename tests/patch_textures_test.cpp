@@ -164,7 +164,10 @@ TEST_F(PatchTexturesGpu, HeightsAndNormalsMatchTheDoubleReferenceOnEveryLevel) {
       const double angle = angleBetween(glm::dvec3(gpu), ref.normal);
       EXPECT_LE(heightError, kHeightToleranceM)
           << "exponent " << level.exponent << " texel " << x << "," << y << ": " << gpu.w << " vs " << ref.heightM;
-      EXPECT_LE(angle, kHeightToleranceM / spacingM) << "exponent " << level.exponent << " texel " << x << "," << y;
+      // The normal is the central differences of four neighbours, each within the height
+      // tolerance: per axis a slope error of up to 2 tol / 2 spacing, and the two axes add (the
+      // eroded ranges' steep walls turn the float path's position rounding into such errors).
+      EXPECT_LE(angle, 2.0 * kHeightToleranceM / spacingM) << "exponent " << level.exponent << " texel " << x << "," << y;
       maxHeightError = std::max(maxHeightError, heightError);
       maxAngle = std::max(maxAngle, angle);
       maxNormLength = std::max(maxNormLength, std::abs(glm::length(glm::dvec3(gpu)) - 1.0));

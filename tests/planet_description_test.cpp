@@ -118,9 +118,9 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   EXPECT_EQ(belts.amplitudeM, 0.0);
   EXPECT_EQ(belts.mask, "continents");
   EXPECT_EQ(mountains.mask, "belts");
-  // Mountains: ridged, hundreds of km, a few km high, and rough (H well below 1, so that the
-  // km-scale octaves still carry relief).
-  EXPECT_EQ(mountains.noise.type, noise::NoiseType::Ridged);
+  // Mountains: eroded (gullies down the slopes), hundreds of km, a few km high, and rough (H well
+  // below 1, so that the km-scale octaves still carry relief).
+  EXPECT_EQ(mountains.noise.type, noise::NoiseType::Eroded);
   EXPECT_GT(1.0 / mountains.frequency, 1e5);
   EXPECT_LT(1.0 / mountains.frequency, 1e6);
   EXPECT_GE(mountains.amplitudeM, 1000.0);
@@ -279,7 +279,7 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError("layer = [1, 2]\n" + withoutLayers()),
             "x.toml:1: 'layer' must be an array of tables ([[layer]]), got an array of values");
   EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
-            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade or craters)");
+            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
             "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
 }

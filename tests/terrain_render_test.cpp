@@ -192,13 +192,13 @@ TEST_F(TerrainRender, LimbIsWhereTheGeometrySays) {
   }
 }
 
-// From a rim 150 m above a basin that lies below mars's radius sphere, the ground is drawn up to
-// the horizon. The horizon cut once took the radius sphere as the lowest surface, so the mesh
+// From 2 m above mars's northern lowlands (4.5 km below its radius sphere), the ground is drawn up
+// to the horizon. The horizon cut once took the radius sphere as the lowest surface, so the mesh
 // ended short of the ground that sight lines below that sphere's horizon reach: a black wedge
 // under the hazy sky. In daylight with air no pixel below the horizon is that dark.
 TEST_F(TerrainRender, GroundBelowTheRadiusSphereIsDrawnToTheHorizon) {
   const PlanetDescription mars = resolvePreset("mars");
-  const CameraPose camera{-5.0, 140.0, 2.0, 60.0, 5.0};
+  const CameraPose camera{30.0, -60.0, 2.0, 60.0, 5.0};
   ASSERT_LT(terrainHeightM(mars, directionFromLatLon(camera.latitudeDeg, camera.longitudeDeg)), -100.0);
   RenderSettings settings = smallSettings(true);
   settings.width = 320;

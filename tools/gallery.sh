@@ -3,7 +3,8 @@
 #   - seed 002's Figures 5.1-5.4 equivalents: one fBm, cascade, hybrid and ridged planet each,
 #     shaded by height only (tools/gallery/*.toml), from orbit and from 600 km;
 #   - a descent on the default planet: orbit -> 100 km -> 10 km -> 1 km -> 2 m, at noon, at
-#     sunset and at night (sky, clouds, water and stars: issue 4);
+#     sunset and at night (sky, clouds, water and stars: issue 4), the first four beside the same
+#     views of the earth preset before issue 10;
 #   - the moon and mars presets from the ground, the moon from orbit.
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
@@ -21,20 +22,27 @@ for type in fbm cascade hybrid ridged; do
   render "fig_$type" --preset "tools/gallery/$type.toml" --camera 25,-40,1.4e7 --sun 150,50
   render "fig_${type}_600km" --preset "tools/gallery/$type.toml" --camera 25,-40,6e5,30,-35 --sun 150,30
 done
-# Descent onto a coast of the default planet (earth) at 38° N: hills and lakes, mountains
-# inland to the west, the sea to the east. Positions chosen from `planet height`.
-render descent_1_orbit --camera 34,160,1.2e7 --sun 150,45
-render descent_2_100km --camera 37.94,162.4,1e5,90,-30 --sun 150,35
-render descent_3_10km --camera 37.942,163.707,1e4,90,-12 --sun 150,35
-render descent_4_1km --camera 37.942,163.72,1300,90,-10 --sun 150,35
-render descent_5_2m --camera 37.942,163.764,0,90,-2 --sun 150,35
-render descent_6_2m_sunset --camera 37.942,163.764,0,90,0 --sun 270,3
+# Descent onto a mountain range of the default planet (earth) at 45° N: the eroded ranges of a
+# belt, seen from orbit, 100 km, 10 km, 1 km above the ground and 2 m, at noon and at sunset.
+# The same views of the earth preset as it was before issue 10 (tools/gallery/earth_before_issue10.toml)
+# make the before/after pairs. Positions chosen from `planet stats` and `planet height`.
+before=tools/gallery/earth_before_issue10.toml
+for preset in earth before; do
+  p=earth; [ $preset = before ] && p=$before
+  render ${preset}_1_orbit --preset $p --camera 40,80,8e6 --sun 150,45
+  render ${preset}_2_100km --preset $p --camera 45.25,81.4,1e5,90,-30 --sun 150,35
+  render ${preset}_3_10km --preset $p --camera 45.25,82.6,1e4,90,-12 --sun 150,35
+  render ${preset}_4_1km --preset $p --camera 45.25,83.0,4300,90,-20 --sun 150,35
+done
+render descent_5_2m --camera 45.3,83.0,0,90,-2 --sun 150,35
+render descent_6_2m_sunset --camera 45.3,83.0,0,90,0 --sun 270,3
 render sea_2m_noon --camera 20,-30,2,90,5 --sun 135,50
 render sea_2m_sunset --camera 20,-30,2,135,3 --sun 135,1
-render night_2m --camera 37.942,163.764,0,270,25 --sun 275,-12
+render night_2m --camera 45.3,83.0,0,270,25 --sun 275,-12
 render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
 render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
 render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30
+render mars_orbit --preset mars --camera 20,-100,1.2e7 --sun 120,40
 # The system (planet render --scene system, issue 8): from the Moon's surface to Terra's, at one
 # time: Terra in the Moon's sky, Terra from 1,000 km above the Moon and from 30,000 km, 400 km
 # over Terra, and the ringed giant with the Moon in Terra's afternoon sky.

@@ -84,7 +84,8 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
       "noise",
       "Evaluate a noise function at points 'x y z' read from stdin, one value per line (%.9g), or with --gradient "
       "'value dx dy dz'");
-  sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade | craters")->required();
+  sub->add_option("--type", cmd->type, "simplex | fbm | ridged | hybrid | hetero | cascade | craters | damped | eroded")
+      ->required();
   sub->add_option("--octaves", cmd->settings.octaves, "Octaves, 1..32")->capture_default_str();
   sub->add_option("--lacunarity", cmd->settings.lacunarity, "Frequency ratio between octaves, in (1, 8]")
       ->capture_default_str();
@@ -92,8 +93,11 @@ void addNoiseCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
       ->capture_default_str();
   sub->add_option("--offset", cmd->offset,
                   "Offset of ridged (default 1), hybrid (0.7), hetero (0.7) and cascade (0.8); rim perturbation of "
-                  "craters, in [0, 0.5] (0.25)");
-  sub->add_option("--gain", cmd->gain, "Ridged feedback gain (default 2)");
+                  "craters, in [0, 0.5] (0.25); octaves of plain fBm under eroded's gullies (3, rounded down, at "
+                  "least 1)");
+  sub->add_option("--gain", cmd->gain,
+                  "Ridged feedback gain; damped: how much steep ground smooths the finer octaves (0: fBm); eroded: "
+                  "gully depth (default 2, in [0, 16])");
   sub->add_option("--seed", cmd->settings.seed, "Seed, 0..4294967295")->capture_default_str();
   sub->add_option("--hash", cmd->hash, "Lattice hash: fast (ALU only) | reference (Perlin's table)")
       ->capture_default_str();

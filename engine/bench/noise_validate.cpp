@@ -14,8 +14,9 @@
 namespace planet::noise {
 namespace {
 
-constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,     NoiseType::Ridged, NoiseType::Hybrid,
-                                   NoiseType::Hetero,  NoiseType::Cascade, NoiseType::Craters};
+constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,    NoiseType::Ridged,
+                                   NoiseType::Hybrid,  NoiseType::Hetero, NoiseType::Cascade,
+                                   NoiseType::Craters, NoiseType::Damped, NoiseType::Eroded};
 constexpr NoiseHash kAllHashes[] = {NoiseHash::Fast, NoiseHash::Reference};
 
 // Monotonic integer image of a float's bits: adjacent floats map to adjacent integers.

@@ -55,11 +55,22 @@ struct NoiseKernel {
     return evaluateNoise(layer.params, p * layer.frequency);
   }
 
+  // TERRAIN_LAYER_NOISE_GRADIENT: the same noise with its gradient with respect to p (a plain
+  // walk samples p · frequency, so its gradient is the noise's times the frequency).
+  vec4 terrainLayerNoiseGradient(uint l, vec3 p, uint /*context: unused on the CPU*/) {
+    const TerrainKernelLayer& layer = terrainLayers[l];
+    permutation = layer.permutation;
+    if (terrainRebased != 0u) return rebasedLayerNoiseGradient(layer.params, l, p);
+    const vec4 noise = evaluateNoiseGradient(layer.params, p * layer.frequency);
+    return withGradient(noise.x, gradientOf(noise) * layer.frequency);
+  }
+
 #define OCTAVE_REMAINDER(layer, i) vec4(octaveRemainders[(layer)*kNoiseMaxOctaves + (i)])
 #define OCTAVE_SHIFT(layer, i) octaveShifts[(layer)*kNoiseMaxOctaves + (i)]
 #define PERM(i) permutation[i]
 #define TERRAIN_LAYER_COUNT terrainLayerCount
 #define TERRAIN_LAYER_NOISE(l, p, context) terrainLayerNoise(l, p, context)
+#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, context) terrainLayerNoiseGradient(l, p, context)
 #define TERRAIN_LAYER(l) terrainLayers[l].shape
 #define TERRAIN_LAYER_AMPLITUDE(l) terrainLayers[l].amplitude
 #include "common/noise.glsl"
@@ -70,6 +81,7 @@ struct NoiseKernel {
 #undef PERM
 #undef TERRAIN_LAYER_COUNT
 #undef TERRAIN_LAYER_NOISE
+#undef TERRAIN_LAYER_NOISE_GRADIENT
 #undef TERRAIN_LAYER
 #undef TERRAIN_LAYER_AMPLITUDE
 };

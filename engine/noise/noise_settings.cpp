@@ -17,7 +17,7 @@ struct TypeName {
 constexpr TypeName kTypeNames[] = {
     {NoiseType::Simplex, "simplex"}, {NoiseType::Fbm, "fbm"},       {NoiseType::Ridged, "ridged"},
     {NoiseType::Hybrid, "hybrid"},   {NoiseType::Hetero, "hetero"}, {NoiseType::Cascade, "cascade"},
-    {NoiseType::Craters, "craters"},
+    {NoiseType::Craters, "craters"}, {NoiseType::Damped, "damped"}, {NoiseType::Eroded, "eroded"},
 };
 
 void requireFinite(double value, const char* name) {
@@ -33,6 +33,7 @@ double defaultOffset(NoiseType type) {
     case NoiseType::Hetero: return 0.7;
     case NoiseType::Cascade: return 0.8;
     case NoiseType::Craters: return 0.25;
+    case NoiseType::Eroded: return 3.0;
     default: return 0.0;
   }
 }
@@ -48,8 +49,9 @@ const char* noiseHashName(NoiseHash hash) { return hash == NoiseHash::Reference 
 NoiseType parseNoiseType(std::string_view name) {
   for (const TypeName& t : kTypeNames)
     if (name == t.name) return t.type;
-  throw Error(
-      fmt::format("unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero, cascade or craters)", name));
+  throw Error(fmt::format(
+      "unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)",
+      name));
 }
 
 NoiseHash parseNoiseHash(std::string_view name) {

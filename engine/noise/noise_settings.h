@@ -19,6 +19,8 @@ enum class NoiseType : uint32_t {
   Hetero = gpu::kNoiseHetero,
   Cascade = gpu::kNoiseCascade,
   Craters = gpu::kNoiseCraters,
+  Damped = gpu::kNoiseDamped,
+  Eroded = gpu::kNoiseEroded,
 };
 
 enum class NoiseHash : uint32_t {
@@ -43,13 +45,13 @@ struct NoiseSettings {
   double lacunarity = 2.0;
   double H = 1.0;
   std::optional<double> offset;  // empty: the type's default (defaultOffset)
-  std::optional<double> gain;    // empty: 2 (ridged only)
+  std::optional<double> gain;    // empty: 2 (ridged: crest feedback; damped: slope damping; eroded: gully depth)
   uint32_t seed = 0;
   NoiseHash hash = NoiseHash::Fast;
 };
 
 // Offset used when none is given: ridged 1, hybrid 0.7, hetero 0.7, cascade 0.8, craters 0.25
-// (rim perturbation), others 0.
+// (rim perturbation), eroded 3 (base octaves: floor(offset), at least 1), others 0.
 double defaultOffset(NoiseType type);
 inline constexpr double kDefaultGain = 2.0;
 

@@ -14,6 +14,8 @@ OctaveBudget octaveBudget(const NoiseLayer& layer, double spacingM, double wavel
   const double lacunarity = double(float(layer.noise.lacunarity));
   // A crater octave's features are its craters, at most 2 kCraterRadiusMax cells across: its
   // wavelength for this purpose is that diameter, not the cell (else sliding vertices swim).
+  // damped and eroded keep fBm's rule: a damped octave is a simplex octave scaled down, and an
+  // eroded gully octave's stripes are at least one of its lattice units apart (noise_erosion.glsl).
   const double feature =
       layer.noise.type == noise::NoiseType::Craters ? 2.0 * double(noise::NoiseKernel<float>::kCraterRadiusMax) : 1.0;
   const double count =

@@ -30,6 +30,16 @@ bool hasCraterLayer(const PlanetDescription& planet) {
                      [](const NoiseLayer& layer) { return layer.noise.type == noise::NoiseType::Craters; });
 }
 
+bool hasErosionLayer(const PlanetDescription& planet) {
+  return std::any_of(planet.layers.begin(), planet.layers.end(), [](const NoiseLayer& layer) {
+    return layer.noise.type == noise::NoiseType::Damped || layer.noise.type == noise::NoiseType::Eroded;
+  });
+}
+
+bool needsFullNoiseShaders(const PlanetDescription& planet) {
+  return hasCraterLayer(planet) || hasErosionLayer(planet);
+}
+
 PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet) : planet_(planet) {
   if (planet.layers.size() > gpu::kTerrainMaxLayers)
     throw Error(fmt::format("planet '{}' has {} layers; the GPU terrain holds at most {}", planet.name,

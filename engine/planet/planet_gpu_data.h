@@ -26,6 +26,14 @@ std::vector<uint32_t> layerSpecialization(const PlanetDescription& planet);
 // planets that have no crater layer, whose pipelines then compile faster in less memory).
 bool hasCraterLayer(const PlanetDescription& planet);
 
+// Whether a layer of `planet` is of type damped or eroded (shaders/common/noise_erosion.glsl).
+bool hasErosionLayer(const PlanetDescription& planet);
+
+// Whether the shaders specialized on the layers need their full variant: a crater or erosion
+// layer. The other variant (NOISE_NO_CRATERS, which implies NOISE_NO_EROSION in noise.glsl)
+// leaves both out; the erosion code alone doubles a noise pipeline's compile time on lavapipe.
+bool needsFullNoiseShaders(const PlanetDescription& planet);
+
 class PlanetGpuData {
  public:
   // Throws planet::Error if the planet has more layers than the shaders hold.

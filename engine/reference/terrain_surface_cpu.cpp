@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "noise/noise_kernel.h"
+#include "planet/terrain_kernel.h"
 
 namespace planet {
 namespace {
@@ -21,21 +22,43 @@ glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPla
       frame.faceAxisA, frame.faceAxisB, job.bandFrequency);
 }
 
-void computeVertex(const CpuSurfaceJob& job, uint32_t index, glm::vec4* surface, glm::vec4* attributes) {
+// The height and its gradient at offsetM (terrainHeightRebased's evaluation, with the gradient).
+glm::vec4 heightGradient(const CpuSurfaceJob& job, const glm::vec3& offsetM, double spacingM) {
+  const PlanetDescription& planet = *job.planet;
+  const TerrainKernelLayers<float> layers = terrainKernelLayers<float>(planet, spacingM);
+  noise::NoiseKernel<float> kernel;
+  kernel.octaveRemainders = job.tables->remainders.data();
+  kernel.octaveShifts = job.tables->shifts.data();
+  layers.attach(kernel, true);
+  return kernel.terrainHeightGradientSum(float(planet.baseHeightM), float(planet.heightScale), offsetM, 0u);
+}
+
+void computeVertex(const CpuSurfaceJob& job, uint32_t index, glm::vec4* surface, glm::vec4* normals,
+                   glm::vec4* attributes) {
   const ClipmapVertex& v = job.mesh->vertices[index];
   const float s = std::sin(v.theta);
   const float h2 = std::sin(0.5f * v.theta);
   const glm::vec3 offsetLocal =
       job.frame->camera.y * glm::vec3(s * std::cos(v.phi), s * std::sin(v.phi), -2.0f * h2 * h2);
   const glm::vec3 offsetPlanet = glm::mat3(job.frame->localToPlanet) * offsetLocal;
-  const float height = terrainHeightRebased(*job.planet, *job.tables, offsetPlanet, job.ringSpacingM[v.ring]);
-  surface[index] = glm::vec4(offsetLocal, height);
+  const glm::vec4 h = heightGradient(job, offsetPlanet, job.ringSpacingM[v.ring]);
+  surface[index] = glm::vec4(offsetLocal, h.x);
+  normals[index] = glm::vec4(
+      surfaceNormalCpu(h, glm::vec3(v.direction), glm::mat3(job.frame->localToPlanet), job.frame->camera.y), 0.0f);
   attributes[index] = surfaceAttributes(job, offsetPlanet);
 }
 
 }  // namespace
 
-void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* surface, glm::vec4* attributes) {
+glm::vec3 surfaceNormalCpu(const glm::vec4& heightGradient, const glm::vec3& up, const glm::mat3& localToPlanet,
+                           float radiusM) {
+  const glm::vec3 gradientLocal = glm::vec3(heightGradient.y, heightGradient.z, heightGradient.w) * localToPlanet;
+  const glm::vec3 tangent = gradientLocal - glm::dot(gradientLocal, up) * up;
+  return glm::normalize(up - (radiusM / (radiusM + heightGradient.x)) * tangent);
+}
+
+void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* surface, glm::vec4* normals,
+                       glm::vec4* attributes) {
   const uint32_t total = job.vertexCount + 1;  // the range, then the pole
   const uint32_t pole = job.mesh->poleVertex();
   auto vertexOf = [&](uint32_t k) { return k == job.vertexCount ? pole : job.firstVertex + k; };
@@ -48,7 +71,7 @@ void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* su
       // contiguous halves would not balance.
       for (uint32_t block = t * 256u; block < total; block += threads * 256u)
         for (uint32_t k = block; k < std::min(total, block + 256u); ++k)
-          computeVertex(job, vertexOf(k), surface, attributes);
+          computeVertex(job, vertexOf(k), surface, normals, attributes);
     } catch (...) {
       errors[t] = std::current_exception();
     }

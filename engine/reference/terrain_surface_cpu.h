@@ -1,8 +1,8 @@
 // HeightSource::Cpu of the terrain pass (issue 6's comparison): what terrain_heights.comp writes
-// for each clipmap vertex (terrain_surface.glsl), computed on the CPU instead, on several
-// threads, for an upload into the same buffers. Heights come from the CPU reference of the
-// rebased float path (terrainHeightRebased, the shader's code compiled as C++), the rest
-// follows terrain_surface.glsl line by line.
+// for each clipmap vertex (terrain_vertex_surface.glsl), computed on the CPU instead, on several
+// threads, for an upload into the same buffers. Heights and their gradients come from the CPU
+// reference of the rebased float path (the shader's code compiled as C++: the heights equal
+// terrainHeightRebased's), the rest follows terrain_vertex_surface.glsl line by line.
 #pragma once
 
 #include <cstdint>
@@ -28,9 +28,18 @@ struct CpuSurfaceJob {
   uint32_t vertexCount = 0;
 };
 
-// Writes surface[i] (xyz: sea-sphere point − anchor, local frame; w: height) and attributes[i]
+// Writes surface[i] (xyz: sea-sphere point − anchor, local frame; w: height), normals[i] (xyz:
+// unit normal, local frame, from the height's analytic gradient) and attributes[i]
 // (kRenderBindingAttributes) for every vertex of the job, indexed like the mesh. threads = 0:
 // one per hardware thread.
-void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* surface, glm::vec4* attributes);
+void computeSurfaceCpu(const CpuSurfaceJob& job, unsigned threads, glm::vec4* surface, glm::vec4* normals,
+                       glm::vec4* attributes);
+
+// surfaceNormal of terrain_vertex_surface.glsl: the unit normal (local frame) of the displaced
+// surface at a vertex with sphere normal `up` (local frame), from its height and gradient
+// (heightGradient: height, then d/dx, d/dy, d/dz per metre in the planet frame) on the sphere of
+// radius radiusM.
+glm::vec3 surfaceNormalCpu(const glm::vec4& heightGradient, const glm::vec3& up, const glm::mat3& localToPlanet,
+                           float radiusM);
 
 }  // namespace planet

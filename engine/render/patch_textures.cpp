@@ -124,9 +124,10 @@ void PatchTextures::createPipelines() {
   heightPipeline_.reset();
   specialization_ = layerSpecialization(data_.planet());
   const uint32_t sets = uint32_t(regions_.size()) * vk::kFramesInFlight;
-  // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer); the
-  // specialization holds the types, so a change of variant also shows as a change of it.
-  const std::span<const uint32_t> height = hasCraterLayer(data_.planet())
+  // Without the crater and erosion code unless a layer needs it (planet_gpu_data.h,
+  // needsFullNoiseShaders); the specialization holds the types, so a change of variant also shows
+  // as a change of it.
+  const std::span<const uint32_t> height = needsFullNoiseShaders(data_.planet())
                                                ? std::span<const uint32_t>(kSpv_patch_height_comp)
                                                : kSpv_patch_height_no_craters_comp;
   heightPipeline_ = {context_, vk::createComputePipeline(context_, height, kBindings, 0, specialization_, sets)};

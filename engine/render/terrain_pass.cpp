@@ -22,7 +22,6 @@
 #include "spv/terrain_noise.vert.h"
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_heights_no_craters.comp.h"
-#include "spv/terrain_normals.comp.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/graphics_pipeline.h"
@@ -138,7 +137,7 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
                                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
     if (settings.heightSource == HeightSource::Cpu)
-      cpuStaging_[slot] = {context, vk::createBuffer(context, 2 * vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+      cpuStaging_[slot] = {context, vk::createBuffer(context, 3 * vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                      vk::MemoryUsage::Upload)};
   }
 
@@ -162,13 +161,13 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                VK_SHADER_STAGE_COMPUTE_BIT)};
   // Specialized on the planet's layers: lavapipe would otherwise run every fractal type and hash.
-  // Without the crater code unless a layer needs it (planet_gpu_data.h, hasCraterLayer).
-  const std::span<const uint32_t> heights = hasCraterLayer(planet)
+  // Without the crater and erosion code unless a layer needs it (planet_gpu_data.h,
+  // needsFullNoiseShaders).
+  const std::span<const uint32_t> heights = needsFullNoiseShaders(planet)
                                                 ? std::span<const uint32_t>(kSpv_terrain_heights_comp)
                                                 : kSpv_terrain_heights_no_craters_comp;
   heightsPipeline_ = {
       context, vk::createComputePipelineWithLayout(context, heights, layout_.get(), layerSpecialization(planet))};
-  normalsPipeline_ = {context, vk::createComputePipelineWithLayout(context, kSpv_terrain_normals_comp, layout_.get())};
   if (settings.heightSource == HeightSource::VertexShader)
     noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                           VK_SHADER_STAGE_VERTEX_BIT)};
@@ -418,20 +417,19 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   glm::vec4* staging = static_cast<glm::vec4*>(stagingBuffer.mapped());
   const auto start = std::chrono::steady_clock::now();
   // The slot's previous copy out of this staging buffer has finished: its fence was waited for.
-  computeSurfaceCpu(job, settings_.cpuThreads, staging, staging + vertices);
+  computeSurfaceCpu(job, settings_.cpuThreads, staging, staging + vertices, staging + 2 * vertices);
   frame_.cpuHeightsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const VkDeviceSize v4 = sizeof(glm::vec4);
   const VkDeviceSize pole = mesh_.poleVertex();
   const VkBufferCopy surface[2] = {{firstVertex * v4, firstVertex * v4, vertexCount * v4}, {pole * v4, pole * v4, v4}};
-  const VkBufferCopy attributes[2] = {{(vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
-                                      {(vertices + pole) * v4, pole * v4, v4}};
+  const VkBufferCopy normals[2] = {{(vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
+                                   {(vertices + pole) * v4, pole * v4, v4}};
+  const VkBufferCopy attributes[2] = {{(2 * vertices + firstVertex) * v4, firstVertex * v4, vertexCount * v4},
+                                      {(2 * vertices + pole) * v4, pole * v4, v4}};
   context_.allocator.flush(stagingBuffer.allocation);
   vkCmdCopyBuffer(cmd, stagingBuffer.buffer, surface_->buffer, 2, surface);
+  vkCmdCopyBuffer(cmd, stagingBuffer.buffer, normals_->buffer, 2, normals);
   vkCmdCopyBuffer(cmd, stagingBuffer.buffer, attributes_->buffer, 2, attributes);
-  // The normals pass reads the uploaded heights, the vertex shader the attributes.
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
-                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
@@ -453,6 +451,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     push.firstVertex = frame_.heightFirstRing * n;
     push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
     frame_.verticesEvaluated = push.vertexCount + 1;
+    // Heights and normals together (their analytic gradient), on the GPU or uploaded from the CPU.
     if (settings_.heightSource == HeightSource::Cpu) {
       recordCpuHeights(cmd, push.firstVertex, push.vertexCount);
     } else {
@@ -461,18 +460,10 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
       vkCmdDispatch(cmd,
                     (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize,
                     1, 1);
-      // Normals read the heights just written.
-      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     }
-    push.firstVertex = frame_.rings.firstRing * n;
-    push.vertexCount = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, normalsPipeline_.get());
-    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(
-        cmd, (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize, 1, 1);
     // The vertex shader reads positions, normals and attributes.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
     if (timer) timer->end(cmd);

@@ -1,5 +1,5 @@
 // The terrain of one planet (issue 3): the spherical-clipmap mesh uploaded once, the compute
-// passes that give its vertices heights and normals each frame the camera moved, the patch
+// pass that gives its vertices heights and normals each frame the camera moved, the patch
 // textures, and the draw. DESIGN.md "One frame" steps 1–3 for the terrain.
 #pragma once
 
@@ -206,7 +206,7 @@ class TerrainPass {
   void writeTables();
   gpu::TerrainComputePush heightPush() const;
   // HeightSource::Cpu: evaluates this frame's vertices on the CPU into the staging buffer and
-  // records its copy into surface_ and attributes_.
+  // records its copy into surface_, normals_ and attributes_.
   void recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, uint32_t vertexCount);
 
   vk::Context& context_;
@@ -235,14 +235,13 @@ class TerrainPass {
   vk::Owned<vk::Buffer> remainders_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> shifts_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
-  // HeightSource::Cpu: surface, then attributes, as the mesh's vertices.
+  // HeightSource::Cpu: surface, normals, then attributes, each as the mesh's vertices.
   vk::Owned<vk::Buffer> cpuStaging_[vk::kFramesInFlight];
   vk::Owned<VkDescriptorSetLayout> setLayout_;
   vk::Owned<VkDescriptorPool> pool_;
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each points at its slot's buffers
   vk::Owned<VkPipelineLayout> layout_;
   vk::Owned<VkPipeline> heightsPipeline_;
-  vk::Owned<VkPipeline> normalsPipeline_;
   vk::Owned<VkPipelineLayout> noiseDrawLayout_;  // HeightSource::VertexShader: push constants in the vertex stage
   // The draw, filled and as edges: the constructed mode's at once, the other on first use.
   vk::Owned<VkPipeline> fillPipeline_;

@@ -12,6 +12,13 @@
 #include "common/definitions.glsl"
 #include "common/hash.glsl"
 
+// The lean variant of the shaders specialized on a planet's layers (NOISE_NO_CRATERS,
+// shaders/CMakeLists.txt) serves planets with neither crater nor erosion layers
+// (planet_gpu_data.h, needsFullNoiseShaders), so it leaves the erosion fractals out too.
+#if defined(NOISE_NO_CRATERS) && !defined(NOISE_NO_EROSION)
+#define NOISE_NO_EROSION
+#endif
+
 // Simplex skew and unskew factors for 3D (Gustavson 2005): F3 = 1/3, G3 = 1/6.
 SHARED_CONST real kSkew3 = real(1.0f) / real(3.0f);
 SHARED_CONST real kUnskew3 = real(1.0f) / real(6.0f);
@@ -466,10 +473,15 @@ real cratersNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   return fadeLast(params, before, sum);
 }
 
+// The same functions with their analytic gradients (value and gradient together), and the
+// erosion fractals (noise_erosion.glsl, included there), which need them.
+#include "common/noise_gradient.glsl"
+
 // The fractal of type params.type along `walk` (a simplex type samples one octave). A shader
 // compiled with NOISE_NO_CRATERS leaves the crater fractal out (a craters layer then reads as
-// simplex): lavapipe inlines every branch here before specialization constants fold them away, so
-// a shader specialized on crater-free layers would still pay for compiling the crater code.
+// simplex), one compiled with NOISE_NO_EROSION the damped and eroded fractals (the same):
+// lavapipe inlines every branch here before specialization constants fold them away, so a shader
+// specialized on other layers would still pay for compiling that code.
 real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseFbm) return fbmNoise(params, walk);
   if (params.type == kNoiseRidged) return ridgedNoise(params, walk);
@@ -478,6 +490,10 @@ real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseCascade) return cascadeNoise(params, walk);
 #ifndef NOISE_NO_CRATERS
   if (params.type == kNoiseCraters) return cratersNoise(params, walk);
+#endif
+#ifndef NOISE_NO_EROSION
+  if (params.type == kNoiseDamped) return dampedNoise(params, walk);
+  if (params.type == kNoiseEroded) return erodedNoise(params, walk);
 #endif
   return nextOctave(walk, params);
 }
@@ -494,8 +510,5 @@ real evaluateFbm(IN(NoiseParams) params, vec3 p) {
   OctaveWalk walk = plainWalk(params, p);
   return fbmNoise(params, walk);
 }
-
-// The same functions with their analytic gradients (value and gradient together).
-#include "common/noise_gradient.glsl"
 
 #endif

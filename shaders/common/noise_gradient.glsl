@@ -312,9 +312,12 @@ vec4 cratersNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   return fadeLastGradient(params, withGradient(before, dbefore), withGradient(sum, dsum));
 }
 
+// The erosion fractals (damped, eroded), value and gradient.
+#include "common/noise_erosion.glsl"
+
 // fractalNoise with its gradient, vec4(value, d/dx, d/dy, d/dz), with respect to the walk's
 // input (plain: p; rebased: the offset in metres, for a terrain's slope). The value is
-// bit-identical to fractalNoise's. NOISE_NO_CRATERS as there.
+// bit-identical to fractalNoise's. NOISE_NO_CRATERS and NOISE_NO_EROSION as there.
 vec4 fractalNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseFbm) return fbmNoiseGradient(params, walk);
   if (params.type == kNoiseRidged) return ridgedNoiseGradient(params, walk);
@@ -323,6 +326,10 @@ vec4 fractalNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseCascade) return cascadeNoiseGradient(params, walk);
 #ifndef NOISE_NO_CRATERS
   if (params.type == kNoiseCraters) return cratersNoiseGradient(params, walk);
+#endif
+#ifndef NOISE_NO_EROSION
+  if (params.type == kNoiseDamped) return dampedNoiseGradient(params, walk);
+  if (params.type == kNoiseEroded) return erodedNoiseGradient(params, walk);
 #endif
   real plainScale = real(1.0f);
   return nextOctaveGradient(walk, params, plainScale);

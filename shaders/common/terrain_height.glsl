@@ -16,6 +16,10 @@
 //                                       was given (the mesh: the ring)
 //   TERRAIN_LAYER(l)                    layer l's TerrainLayer (its curves and mask are read)
 //   TERRAIN_LAYER_AMPLITUDE(l)          its amplitude in the evaluation's precision
+// and, for terrainHeightGradientSum (compiled only where it is defined):
+//   TERRAIN_LAYER_NOISE_GRADIENT(l, p, context)  TERRAIN_LAYER_NOISE with its gradient with
+//                                       respect to p, vec4(value, d/dx, d/dy, d/dz), the value
+//                                       bit-identical to TERRAIN_LAYER_NOISE's
 // and TERRAIN_UNROLLED_LAYERS where layer indices must be constants: a shader specialized on the
 // layers' types and hashes (terrain_layer_specialization.glsl) names a layer's type by its
 // index, and with constant indices its compiler folds each layer's branches away.
@@ -48,6 +52,18 @@ real rebasedLayerNoise(IN(NoiseParams) params, uint layer, vec3 offset) {
   return fractalNoise(params, walk);
 }
 
+// rebasedLayerNoise with its gradient with respect to the offset (per metre, planet frame).
+vec4 rebasedLayerNoiseGradient(IN(NoiseParams) params, uint layer, vec3 offset) {
+  OctaveWalk walk;
+  walk.q = vec3(real(0.0f));
+  walk.lacunarity = real(params.lacunarity);
+  walk.offset = offset;
+  walk.layer = layer;
+  walk.octave = 0u;
+  walk.rebased = 1u;
+  return fractalNoiseGradient(params, walk);
+}
+
 // Monotone cubic Hermite curve through `count` knots of layer l from knots[first] (shared/
 // terrain_params.h), at x; its end values outside the knots. Continuous in value and slope, so a
 // curve leaves no crease in the terrain's shading along the level sets of the noise.
@@ -72,6 +88,36 @@ real terrainCurve(uint l, uint first, uint count, real x) {
   PRECISE real endSlope = (t3 - t2) * width;
   PRECISE real y = a.y * (real(1.0f) - rise) + b.y * rise + a.z * startSlope + b.z * endSlope;
   return y;
+}
+
+// terrainCurve and its slope dy/dx: vec2(y, dy/dx), y with terrainCurve's operations in its order
+// (bit-identical), the slope the derivative of the same Hermite basis (0 outside the knots,
+// where the curve is flat).
+vec2 terrainCurveWithSlope(uint l, uint first, uint count, real x) {
+  vec4 a = vec4(TERRAIN_LAYER(l).knots[first]);
+  if (x <= a.x) return vec2(a.y, real(0.0f));
+  vec4 last = vec4(TERRAIN_LAYER(l).knots[first + count - 1u]);
+  if (x >= last.x) return vec2(last.y, real(0.0f));
+  uint segment = first;
+  for (uint k = 1u; k + 1u < count; ++k)
+    if (x >= real(TERRAIN_LAYER(l).knots[first + k].x)) segment = first + k;
+  a = vec4(TERRAIN_LAYER(l).knots[segment]);
+  vec4 b = vec4(TERRAIN_LAYER(l).knots[segment + 1u]);
+  PRECISE real width = b.x - a.x;
+  PRECISE real t = (x - a.x) / width;
+  PRECISE real t2 = t * t;
+  PRECISE real t3 = t2 * t;
+  PRECISE real rise = real(3.0f) * t2 - real(2.0f) * t3;
+  PRECISE real startSlope = (t3 - real(2.0f) * t2 + t) * width;
+  PRECISE real endSlope = (t3 - t2) * width;
+  PRECISE real y = a.y * (real(1.0f) - rise) + b.y * rise + a.z * startSlope + b.z * endSlope;
+  // d/dx = (d/dt) / width: the rise's 6t − 6t² carries the knots' difference over the width, the
+  // tangent terms' width cancels.
+  PRECISE real riseSlope = real(6.0f) * (t - t2) / width;
+  PRECISE real startTangent = real(3.0f) * t2 - real(4.0f) * t + real(1.0f);
+  PRECISE real endTangent = real(3.0f) * t2 - real(2.0f) * t;
+  PRECISE real slope = (b.y - a.y) * riseSlope + a.z * startTangent + b.z * endTangent;
+  return vec2(y, slope);
 }
 
 // Layer l's value from its noise value and the value of the layer that masks it (ignored when
@@ -117,5 +163,67 @@ real terrainHeightSum(real baseHeight, real heightScale, vec3 p, uint context) {
 }
 
 #undef TERRAIN_HEIGHT_STEP
+
+#ifdef TERRAIN_LAYER_NOISE_GRADIENT
+// terrainLayerValue with its gradient, from the noise's and the mask source's (values with
+// gradients): for value = c(n) · m(s), grad = c'(n) grad n · m(s) + c(n) · m'(s) grad s. The value
+// with terrainLayerValue's operations (bit-identical).
+vec4 terrainLayerValueGradient(uint l, vec4 noiseValue, vec4 maskSource) {
+  PRECISE real value = noiseValue.x;
+  PRECISE vec3 gradient = gradientOf(noiseValue);
+  if (TERRAIN_LAYER(l).curveKnots > 0u) {
+    vec2 curve = terrainCurveWithSlope(l, 0u, TERRAIN_LAYER(l).curveKnots, value);
+    value = curve.x;
+    gradient = gradient * curve.y;
+  }
+  if (TERRAIN_LAYER(l).maskLayer != kTerrainNoMask) {
+    PRECISE real mask = maskSource.x;
+    PRECISE vec3 maskGradient = gradientOf(maskSource);
+    if (TERRAIN_LAYER(l).maskKnots > 0u) {
+      vec2 curve = terrainCurveWithSlope(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, mask);
+      mask = curve.x;
+      maskGradient = maskGradient * curve.y;
+    }
+    gradient = gradient * mask + maskGradient * value;
+    value = value * mask;
+  }
+  return withGradient(value, gradient);
+}
+
+// One layer of terrainHeightGradientSum: TERRAIN_HEIGHT_STEP with each value's gradient beside it.
+#define TERRAIN_HEIGHT_GRADIENT_STEP(l)                                                                  \
+  {                                                                                                      \
+    uint source = TERRAIN_LAYER(l).maskLayer < (l) ? TERRAIN_LAYER(l).maskLayer : (l);                    \
+    values[l] = terrainLayerValueGradient(l, TERRAIN_LAYER_NOISE_GRADIENT(l, p, context), values[source]); \
+    sum += TERRAIN_LAYER_AMPLITUDE(l) * values[l].x;                                                     \
+    gradient += gradientOf(values[l]) * real(TERRAIN_LAYER_AMPLITUDE(l));                                \
+  }
+
+// terrainHeightSum with its gradient with respect to p: vec4(height, dh/dp), the height
+// bit-identical to terrainHeightSum's (the same operations in the same order). One evaluation
+// of the stack gives a vertex its normal, where differences of neighbours took four more.
+vec4 terrainHeightGradientSum(real baseHeight, real heightScale, vec3 p, uint context) {
+  PRECISE real sum = baseHeight;
+  PRECISE vec3 gradient = vec3(real(0.0f));
+  vec4 values[kTerrainMaxLayers];
+  for (uint i = 0u; i < kTerrainMaxLayers; ++i) values[i] = vec4(real(0.0f));
+#ifdef TERRAIN_UNROLLED_LAYERS
+  if (TERRAIN_LAYER_COUNT > 0u) TERRAIN_HEIGHT_GRADIENT_STEP(0u)
+  if (TERRAIN_LAYER_COUNT > 1u) TERRAIN_HEIGHT_GRADIENT_STEP(1u)
+  if (TERRAIN_LAYER_COUNT > 2u) TERRAIN_HEIGHT_GRADIENT_STEP(2u)
+  if (TERRAIN_LAYER_COUNT > 3u) TERRAIN_HEIGHT_GRADIENT_STEP(3u)
+  if (TERRAIN_LAYER_COUNT > 4u) TERRAIN_HEIGHT_GRADIENT_STEP(4u)
+  if (TERRAIN_LAYER_COUNT > 5u) TERRAIN_HEIGHT_GRADIENT_STEP(5u)
+  if (TERRAIN_LAYER_COUNT > 6u) TERRAIN_HEIGHT_GRADIENT_STEP(6u)
+  if (TERRAIN_LAYER_COUNT > 7u) TERRAIN_HEIGHT_GRADIENT_STEP(7u)
+#else
+  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) TERRAIN_HEIGHT_GRADIENT_STEP(l)
+#endif
+  PRECISE vec3 scaled = gradient * heightScale;
+  return withGradient(heightScale * sum, scaled);
+}
+
+#undef TERRAIN_HEIGHT_GRADIENT_STEP
+#endif
 
 #endif

@@ -15,7 +15,9 @@ GPU_CONST uint kNoiseHybrid = 3u;
 GPU_CONST uint kNoiseHetero = 4u;
 GPU_CONST uint kNoiseCascade = 5u;
 GPU_CONST uint kNoiseCraters = 6u;  // impact craters of many sizes (airless bodies)
-GPU_CONST uint kNoiseTypeCount = 7u;
+GPU_CONST uint kNoiseDamped = 7u;   // fBm whose detail fades where the octaves before are steep
+GPU_CONST uint kNoiseEroded = 8u;   // fBm base carved by gullies running down its slope
+GPU_CONST uint kNoiseTypeCount = 9u;
 
 // Lattice hashes (NoiseParams.hash).
 GPU_CONST uint kNoiseHashFast = 0u;       // ALU-only integer hash of (i, j, k, seed)
@@ -37,8 +39,9 @@ struct NoiseParams {
   uint seedMix;        // the seed after noiseSeedMix(), so the fast hash needs no per-point setup
   float lacunarity;    // L: octave i samples p * L^i
   float octaveWeight;  // L^-H: octave i is weighted by octaveWeight^i (pow computed once, on the CPU)
-  float offset;        // ridged / hybrid / hetero / cascade offset; craters: rim perturbation
-  float gain;          // ridged feedback gain
+  float offset;        // ridged / hybrid / hetero / cascade offset; craters: rim perturbation;
+                       // eroded: base octaves (floor, at least 1)
+  float gain;          // ridged feedback gain; damped: slope damping (k = gain / 16); eroded: gully depth
   uint count;          // points to evaluate (GPU only)
   uint firstIndex;     // index of the first point of this dispatch (GPU only)
   float lastOctaveWeight;  // (0, 1]: the last of `octaves` counts this much (1: fully), the octave fade

@@ -1,5 +1,5 @@
 // The terrain pass (engine/render/terrain_pass.*): bindings and per-frame blocks shared by its
-// compute shaders (terrain_heights.comp, terrain_normals.comp) and its graphics shaders
+// compute shader (terrain_heights.comp) and its graphics shaders
 // (terrain.vert, terrain.frag).
 //
 // Frames (engine/planet/clipmap_orientation.h): the mesh's local frame has +z at the camera's
@@ -89,9 +89,9 @@ struct TerrainComputePush {
   uint numPhi;       // vertices per ring
   uint ringCount;    // rings of the mesh (the pole is vertex ringCount · numPhi)
   uint layerCount;
-  uint firstRing;  // the range's outermost and innermost rings (normals take neighbours inside it)
-  uint lastRing;
-  uint poleNeighbourRing;  // the ring whose vertices around the pole give the pole its normal
+  uint firstRing;  // the range's outermost and innermost rings (unused since normals come from the
+  uint lastRing;   // analytic gradient; kept for the std430 layout and the bench's reports)
+  uint poleNeighbourRing;  // unused likewise
   float baseHeightM;
   float heightScale;
   float bandFrequency;  // cycles per metre of the colour-band noise

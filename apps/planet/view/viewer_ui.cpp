@@ -35,8 +35,9 @@ bool editLayer(NoiseLayer& layer) {
   bool done = false;
   noise::NoiseSettings& n = layer.noise;
   static constexpr noise::NoiseType kTypes[] = {
-      noise::NoiseType::Simplex, noise::NoiseType::Fbm,     noise::NoiseType::Ridged, noise::NoiseType::Hybrid,
-      noise::NoiseType::Hetero,  noise::NoiseType::Cascade, noise::NoiseType::Craters};
+      noise::NoiseType::Simplex, noise::NoiseType::Fbm,    noise::NoiseType::Ridged,
+      noise::NoiseType::Hybrid,  noise::NoiseType::Hetero, noise::NoiseType::Cascade,
+      noise::NoiseType::Craters, noise::NoiseType::Damped, noise::NoiseType::Eroded};
   if (ImGui::BeginCombo("type", noise::noiseTypeName(n.type))) {
     for (noise::NoiseType t : kTypes)
       if (ImGui::Selectable(noise::noiseTypeName(t), t == n.type) && t != n.type) {
@@ -50,14 +51,26 @@ bool editLayer(NoiseLayer& layer) {
   done |= editDouble("lacunarity", n.lacunarity, 1.01, 8.0);
   done |= editDouble("H", n.H, noise::kMinH, noise::kMaxH);
   double offset = n.offset.value_or(noise::defaultOffset(n.type));
-  // Craters' offset is the rim perturbation, valid in [0, 0.5] only.
+  // Craters' offset is the rim perturbation, valid in [0, 0.5] only; eroded's the number of
+  // octaves of plain fBm under the gullies (a whole number); damped has none.
   const bool craters = n.type == noise::NoiseType::Craters;
-  if (editDouble(craters ? "rim perturbation" : "offset", offset, craters ? 0.0 : -2.0,
-                 craters ? noise::kMaxCraterPerturbation : 2.0))
+  const bool damped = n.type == noise::NoiseType::Damped;
+  const bool eroded = n.type == noise::NoiseType::Eroded;
+  if (eroded) {
+    const int shown = std::clamp(int(std::floor(offset)), 1, n.octaves);
+    int baseOctaves = shown;
+    if (editInt("base octaves (fBm under the gullies)", baseOctaves, 1, n.octaves)) done = true;
+    if (baseOctaves != shown) offset = double(baseOctaves);  // unmoved, a fractional offset stays
+  } else if (!damped && editDouble(craters ? "rim perturbation" : "offset", offset, craters ? 0.0 : -2.0,
+                                   craters ? noise::kMaxCraterPerturbation : 2.0)) {
     done = true;
+  }
   if (offset != n.offset.value_or(noise::defaultOffset(n.type))) n.offset = offset;
   double gain = n.gain.value_or(noise::kDefaultGain);
-  if (editDouble("gain", gain, 0.0, noise::kMaxGain)) done = true;
+  // Ridged: how a crest sharpens the next octave; damped: how much steep ground smooths the finer
+  // octaves; eroded: the depth of the gullies.
+  const char* gainLabel = damped ? "slope damping (gain)" : eroded ? "gully depth (gain)" : "gain";
+  if (editDouble(gainLabel, gain, 0.0, noise::kMaxGain)) done = true;
   if (gain != n.gain.value_or(noise::kDefaultGain)) n.gain = gain;
   int seed = int(std::min<uint32_t>(n.seed, 1u << 30));
   if (ImGui::InputInt("seed", &seed, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
