@@ -163,19 +163,6 @@ std::vector<CurvePoint> readCurve(const Context& context, const TableReader& rea
   if (!array || array->size() < 2 || array->size() > maxPoints)
     context.fail(lineOf(*node), fmt::format("'{}' must be an array of 2 to {} points [x, y], got {}", key, maxPoints,
                                             array ? fmt::format("{} elements", array->size()) : typeName(*node)));
-  auto number = [&](const toml::node& element, const std::string& label, Range range) {
-    double value;
-    if (auto integer = element.as_integer())
-      value = double(integer->get());
-    else if (auto floating = element.as_floating_point())
-      value = floating->get();
-    else
-      context.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
-    if (!(value >= range.min && value <= range.max))
-      context.fail(lineOf(element),
-                   fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
-    return value;
-  };
   std::vector<CurvePoint> points;
   for (size_t i = 0; i < array->size(); ++i) {
     const toml::node& element = *array->get(i);
@@ -183,8 +170,8 @@ std::vector<CurvePoint> readCurve(const Context& context, const TableReader& rea
     if (!pair || pair->size() != 2)
       context.fail(lineOf(element), fmt::format("{}[{}] must be a point [x, y], got {}", key, i,
                                                 pair ? fmt::format("{} elements", pair->size()) : typeName(element)));
-    CurvePoint point{number(*pair->get(0), fmt::format("{}[{}][0]", key, i), xRange),
-                     number(*pair->get(1), fmt::format("{}[{}][1]", key, i), kCurveValueRange)};
+    CurvePoint point{reader.element(*pair->get(0), fmt::format("{}[{}][0]", key, i), xRange),
+                     reader.element(*pair->get(1), fmt::format("{}[{}][1]", key, i), kCurveValueRange)};
     if (!points.empty() && !(point.x > points.back().x))
       context.fail(lineOf(element), fmt::format("{}[{}][0] must be above the point before ({}), got {}", key, i,
                                                 formatNumber(points.back().x), formatNumber(point.x)));

@@ -161,23 +161,26 @@ class TableReader {
     return value;
   }
 
+  // An element of an array value (`label` names it in messages, "key[1]"): a number in `range`.
+  double element(const toml::node& element, const std::string& label, Range range) const {
+    double value;
+    if (auto integer = element.as_integer())
+      value = double(integer->get());
+    else if (auto floating = element.as_floating_point())
+      value = floating->get();
+    else
+      context_.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
+    if (!(value >= range.min && value <= range.max))
+      context_.fail(lineOf(element),
+                    fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
+    return value;
+  }
+
   // [x, y, z], each in `range`; a single number stands for all three when `allowScalar`.
   std::optional<glm::dvec3> vector3(std::string_view key, Range range, bool allowScalar = false) const {
     const toml::node* node = find(key);
     if (!node) return std::nullopt;
-    auto component = [&](const toml::node& element, const std::string& label) {
-      double value;
-      if (auto integer = element.as_integer())
-        value = double(integer->get());
-      else if (auto floating = element.as_floating_point())
-        value = floating->get();
-      else
-        context_.fail(lineOf(element), fmt::format("{} must be a number, got {}", label, typeName(element)));
-      if (!(value >= range.min && value <= range.max))
-        context_.fail(lineOf(element),
-                      fmt::format("{} must be in {}, got {}", label, formatRange(range), formatNumber(value)));
-      return value;
-    };
+    auto component = [&](const toml::node& item, const std::string& label) { return element(item, label, range); };
     if (allowScalar && (node->is_integer() || node->is_floating_point())) {
       double value = component(*node, std::string(key));
       return glm::dvec3(value);
