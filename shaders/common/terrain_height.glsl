@@ -64,23 +64,17 @@ vec4 rebasedLayerNoiseGradient(IN(NoiseParams) params, uint layer, vec3 offset) 
   return fractalNoiseGradient(params, walk);
 }
 
-// Monotone cubic Hermite curve through `count` knots of layer l from knots[first] (shared/
-// terrain_params.h), at x; its end values outside the knots. Continuous in value and slope, so a
-// curve leaves no crease in the terrain's shading along the level sets of the noise.
-real terrainCurve(uint l, uint first, uint count, real x) {
-  vec4 a = vec4(TERRAIN_LAYER(l).knots[first]);
-  if (x <= a.x) return a.y;
-  vec4 last = vec4(TERRAIN_LAYER(l).knots[first + count - 1u]);
-  if (x >= last.x) return last.y;
+// The knot of layer l's curve (`count` knots from knots[first]) that starts x's segment: the
+// last one at or below x, never the last knot (x inside the knots; the callers take the ends).
+uint terrainCurveSegment(uint l, uint first, uint count, real x) {
   uint segment = first;
   for (uint k = 1u; k + 1u < count; ++k)
     if (x >= real(TERRAIN_LAYER(l).knots[first + k].x)) segment = first + k;
-  a = vec4(TERRAIN_LAYER(l).knots[segment]);
-  vec4 b = vec4(TERRAIN_LAYER(l).knots[segment + 1u]);
-  // A division, not a stored reciprocal: t must be 1 exactly at the next knot, or the value
-  // would step there by the reciprocal's rounding times the segment's rise.
-  PRECISE real width = b.x - a.x;
-  PRECISE real t = (x - a.x) / width;
+  return segment;
+}
+
+// The Hermite segment from knot a to knot b at t in [0, 1] (width = b.x − a.x).
+real terrainHermite(vec4 a, vec4 b, real t, real width) {
   PRECISE real t2 = t * t;
   PRECISE real t3 = t2 * t;
   PRECISE real rise = real(3.0f) * t2 - real(2.0f) * t3;  // h01; h00 = 1 - h01
@@ -90,34 +84,44 @@ real terrainCurve(uint l, uint first, uint count, real x) {
   return y;
 }
 
-// terrainCurve and its slope dy/dx: vec2(y, dy/dx), y with terrainCurve's operations in its order
-// (bit-identical), the slope the derivative of the same Hermite basis (0 outside the knots,
-// where the curve is flat).
+// Monotone cubic Hermite curve through `count` knots of layer l from knots[first] (shared/
+// terrain_params.h), at x; its end values outside the knots. Continuous in value and slope, so a
+// curve leaves no crease in the terrain's shading along the level sets of the noise.
+real terrainCurve(uint l, uint first, uint count, real x) {
+  vec4 a = vec4(TERRAIN_LAYER(l).knots[first]);
+  if (x <= a.x) return a.y;
+  vec4 last = vec4(TERRAIN_LAYER(l).knots[first + count - 1u]);
+  if (x >= last.x) return last.y;
+  uint segment = terrainCurveSegment(l, first, count, x);
+  a = vec4(TERRAIN_LAYER(l).knots[segment]);
+  vec4 b = vec4(TERRAIN_LAYER(l).knots[segment + 1u]);
+  // A division, not a stored reciprocal: t must be 1 exactly at the next knot, or the value
+  // would step there by the reciprocal's rounding times the segment's rise.
+  PRECISE real width = b.x - a.x;
+  PRECISE real t = (x - a.x) / width;
+  return terrainHermite(a, b, t, width);
+}
+
+// terrainCurve and its slope dy/dx: vec2(y, dy/dx), y as terrainCurve computes it (bit-identical),
+// the slope the derivative of the same Hermite basis (0 outside the knots, where the curve is flat).
 vec2 terrainCurveWithSlope(uint l, uint first, uint count, real x) {
   vec4 a = vec4(TERRAIN_LAYER(l).knots[first]);
   if (x <= a.x) return vec2(a.y, real(0.0f));
   vec4 last = vec4(TERRAIN_LAYER(l).knots[first + count - 1u]);
   if (x >= last.x) return vec2(last.y, real(0.0f));
-  uint segment = first;
-  for (uint k = 1u; k + 1u < count; ++k)
-    if (x >= real(TERRAIN_LAYER(l).knots[first + k].x)) segment = first + k;
+  uint segment = terrainCurveSegment(l, first, count, x);
   a = vec4(TERRAIN_LAYER(l).knots[segment]);
   vec4 b = vec4(TERRAIN_LAYER(l).knots[segment + 1u]);
   PRECISE real width = b.x - a.x;
   PRECISE real t = (x - a.x) / width;
   PRECISE real t2 = t * t;
-  PRECISE real t3 = t2 * t;
-  PRECISE real rise = real(3.0f) * t2 - real(2.0f) * t3;
-  PRECISE real startSlope = (t3 - real(2.0f) * t2 + t) * width;
-  PRECISE real endSlope = (t3 - t2) * width;
-  PRECISE real y = a.y * (real(1.0f) - rise) + b.y * rise + a.z * startSlope + b.z * endSlope;
   // d/dx = (d/dt) / width: the rise's 6t − 6t² carries the knots' difference over the width, the
   // tangent terms' width cancels.
   PRECISE real riseSlope = real(6.0f) * (t - t2) / width;
   PRECISE real startTangent = real(3.0f) * t2 - real(4.0f) * t + real(1.0f);
   PRECISE real endTangent = real(3.0f) * t2 - real(2.0f) * t;
   PRECISE real slope = (b.y - a.y) * riseSlope + a.z * startTangent + b.z * endTangent;
-  return vec2(y, slope);
+  return vec2(terrainHermite(a, b, t, width), slope);
 }
 
 // Layer l's value from its noise value and the value of the layer that masks it (ignored when
@@ -133,6 +137,23 @@ real terrainLayerValue(uint l, real noiseValue, real maskSource) {
   return value;
 }
 
+// Runs STEP(l) for each layer l in order: with constant indices where the includer asks for
+// them (TERRAIN_UNROLLED_LAYERS), else in a loop.
+#ifdef TERRAIN_UNROLLED_LAYERS
+#define TERRAIN_FOR_EACH_LAYER(STEP)          \
+  if (TERRAIN_LAYER_COUNT > 0u) STEP(0u)      \
+  if (TERRAIN_LAYER_COUNT > 1u) STEP(1u)      \
+  if (TERRAIN_LAYER_COUNT > 2u) STEP(2u)      \
+  if (TERRAIN_LAYER_COUNT > 3u) STEP(3u)      \
+  if (TERRAIN_LAYER_COUNT > 4u) STEP(4u)      \
+  if (TERRAIN_LAYER_COUNT > 5u) STEP(5u)      \
+  if (TERRAIN_LAYER_COUNT > 6u) STEP(6u)      \
+  if (TERRAIN_LAYER_COUNT > 7u) STEP(7u)
+#else
+#define TERRAIN_FOR_EACH_LAYER(STEP) \
+  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) STEP(l)
+#endif
+
 // One layer of terrainHeightSum: its value kept for the layers it masks, its term added. A mask
 // layer is always an earlier one (the parser's rule); any other index reads this layer's 0.
 #define TERRAIN_HEIGHT_STEP(l)                                                                        \
@@ -147,18 +168,7 @@ real terrainHeightSum(real baseHeight, real heightScale, vec3 p, uint context) {
   PRECISE real sum = baseHeight;
   real values[kTerrainMaxLayers];
   for (uint i = 0u; i < kTerrainMaxLayers; ++i) values[i] = real(0.0f);
-#ifdef TERRAIN_UNROLLED_LAYERS
-  if (TERRAIN_LAYER_COUNT > 0u) TERRAIN_HEIGHT_STEP(0u)
-  if (TERRAIN_LAYER_COUNT > 1u) TERRAIN_HEIGHT_STEP(1u)
-  if (TERRAIN_LAYER_COUNT > 2u) TERRAIN_HEIGHT_STEP(2u)
-  if (TERRAIN_LAYER_COUNT > 3u) TERRAIN_HEIGHT_STEP(3u)
-  if (TERRAIN_LAYER_COUNT > 4u) TERRAIN_HEIGHT_STEP(4u)
-  if (TERRAIN_LAYER_COUNT > 5u) TERRAIN_HEIGHT_STEP(5u)
-  if (TERRAIN_LAYER_COUNT > 6u) TERRAIN_HEIGHT_STEP(6u)
-  if (TERRAIN_LAYER_COUNT > 7u) TERRAIN_HEIGHT_STEP(7u)
-#else
-  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) TERRAIN_HEIGHT_STEP(l)
-#endif
+  TERRAIN_FOR_EACH_LAYER(TERRAIN_HEIGHT_STEP)
   return heightScale * sum;
 }
 
@@ -207,23 +217,14 @@ vec4 terrainHeightGradientSum(real baseHeight, real heightScale, vec3 p, uint co
   PRECISE vec3 gradient = vec3(real(0.0f));
   vec4 values[kTerrainMaxLayers];
   for (uint i = 0u; i < kTerrainMaxLayers; ++i) values[i] = vec4(real(0.0f));
-#ifdef TERRAIN_UNROLLED_LAYERS
-  if (TERRAIN_LAYER_COUNT > 0u) TERRAIN_HEIGHT_GRADIENT_STEP(0u)
-  if (TERRAIN_LAYER_COUNT > 1u) TERRAIN_HEIGHT_GRADIENT_STEP(1u)
-  if (TERRAIN_LAYER_COUNT > 2u) TERRAIN_HEIGHT_GRADIENT_STEP(2u)
-  if (TERRAIN_LAYER_COUNT > 3u) TERRAIN_HEIGHT_GRADIENT_STEP(3u)
-  if (TERRAIN_LAYER_COUNT > 4u) TERRAIN_HEIGHT_GRADIENT_STEP(4u)
-  if (TERRAIN_LAYER_COUNT > 5u) TERRAIN_HEIGHT_GRADIENT_STEP(5u)
-  if (TERRAIN_LAYER_COUNT > 6u) TERRAIN_HEIGHT_GRADIENT_STEP(6u)
-  if (TERRAIN_LAYER_COUNT > 7u) TERRAIN_HEIGHT_GRADIENT_STEP(7u)
-#else
-  for (uint l = 0u; l < TERRAIN_LAYER_COUNT; ++l) TERRAIN_HEIGHT_GRADIENT_STEP(l)
-#endif
+  TERRAIN_FOR_EACH_LAYER(TERRAIN_HEIGHT_GRADIENT_STEP)
   PRECISE vec3 scaled = gradient * heightScale;
   return withGradient(heightScale * sum, scaled);
 }
 
 #undef TERRAIN_HEIGHT_GRADIENT_STEP
 #endif
+
+#undef TERRAIN_FOR_EACH_LAYER
 
 #endif
