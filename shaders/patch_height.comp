@@ -31,19 +31,21 @@ uint gTableBase = 0u;
 #include "common/noise.glsl"
 
 // Layer l's noise value at `offset` (sample minus tile anchor, metres), limited to the octaves
-// this level's texel spacing can show, the last one faded (octave_budget.h).
-float layerNoise(uint l, vec3 offset);
+// this level's texel spacing can show, the last one faded (octave_budget.h); none where
+// `needed` is false (the layer's mask is 0 there).
+float layerNoise(uint l, vec3 offset, bool needed);
 #define TERRAIN_UNROLLED_LAYERS
 #define TERRAIN_LAYER_COUNT kSpecLayerCount
-#define TERRAIN_LAYER_NOISE(l, p, context) layerNoise(l, p)
+#define TERRAIN_LAYER_NOISE(l, p, context, needed) layerNoise(l, p, needed)
 #define TERRAIN_LAYER(l) layers[l]
 #define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 
-float layerNoise(uint l, vec3 offset) {
+float layerNoise(uint l, vec3 offset, bool needed) {
   gPermutationBase = l * kNoisePermutationSize;
-  NoiseParams params = terrainLayerParams(layers[l].noise, specLayerType(l), specLayerHash(l),
-                                          level.budgets[l].octaves, level.budgets[l].lastOctaveWeight);
+  uint octaves = needed ? level.budgets[l].octaves : 0u;
+  NoiseParams params = terrainLayerParams(layers[l].noise, specLayerType(l), specLayerHash(l), octaves,
+                                          level.budgets[l].lastOctaveWeight);
   return rebasedLayerNoise(params, l, offset);
 }
 

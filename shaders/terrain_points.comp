@@ -25,17 +25,20 @@ uint gPermutationBase = 0u;
 #define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
-// Layer l's noise value at `offset` (sample minus anchor, metres), every octave of the layer.
-float layerNoise(uint l, vec3 offset);
+// Layer l's noise value at `offset` (sample minus anchor, metres), every octave of the layer
+// (none where `needed` is false: its mask is 0 there).
+float layerNoise(uint l, vec3 offset, bool needed);
 #define TERRAIN_LAYER_COUNT push.layerCount
-#define TERRAIN_LAYER_NOISE(l, p, context) layerNoise(l, p)
+#define TERRAIN_LAYER_NOISE(l, p, context, needed) layerNoise(l, p, needed)
 #define TERRAIN_LAYER(l) layers[l]
 #define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 
-float layerNoise(uint l, vec3 offset) {
+float layerNoise(uint l, vec3 offset, bool needed) {
   gPermutationBase = l * kNoisePermutationSize;
-  return rebasedLayerNoise(layers[l].noise, l, offset);
+  NoiseParams params = layers[l].noise;
+  if (!needed) params.octaves = 0u;
+  return rebasedLayerNoise(params, l, offset);
 }
 
 void main() {

@@ -36,27 +36,29 @@ vec3 surfaceOffsetLocal(MeshVertex v) {
 }
 
 // Layer l's noise at the point `offsetPlanet` (planet frame, metres from the anchor), with the
-// octaves of ring `ring`'s RingBudget (its amplitude not applied). An includer that defines
+// octaves of ring `ring`'s RingBudget, or none where `needed` is false (its mask is 0; its
+// amplitude not applied). An includer that defines
 // TERRAIN_SPECIALIZED_LAYERS (and includes terrain_layer_specialization.glsl first) gets the
 // layers' count, types and hashes from specialization constants; otherwise from the buffer.
-float layerNoise(uint l, vec3 offsetPlanet, uint ring);
+float layerNoise(uint l, vec3 offsetPlanet, uint ring, bool needed);
 // The same with its gradient with respect to offsetPlanet (per metre, planet frame).
-vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring);
+vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring, bool needed);
 #ifdef TERRAIN_SPECIALIZED_LAYERS
 #define TERRAIN_UNROLLED_LAYERS
 #define TERRAIN_LAYER_COUNT kSpecLayerCount
 #else
 #define TERRAIN_LAYER_COUNT push.layerCount
 #endif
-#define TERRAIN_LAYER_NOISE(l, p, ring) layerNoise(l, p, ring)
-#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, ring) layerNoiseGradient(l, p, ring)
+#define TERRAIN_LAYER_NOISE(l, p, ring, needed) layerNoise(l, p, ring, needed)
+#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, ring, needed) layerNoiseGradient(l, p, ring, needed)
 #define TERRAIN_LAYER(l) layers[l]
 #define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
 #include "common/terrain_height.glsl"
 #include "common/surface_attributes.glsl"
 
-// Layer l's noise parameters with ring `ring`'s octaves; selects its permutation table.
-NoiseParams layerParams(uint l, uint ring) {
+// Layer l's noise parameters with ring `ring`'s octaves (none where not needed); selects its
+// permutation table.
+NoiseParams layerParams(uint l, uint ring, bool needed) {
   gPermutationBase = l * kNoisePermutationSize;
 #ifdef TERRAIN_SPECIALIZED_LAYERS
   uint type = specLayerType(l);
@@ -65,15 +67,16 @@ NoiseParams layerParams(uint l, uint ring) {
   uint type = layers[l].noise.type;
   uint hash = layers[l].noise.hash;
 #endif
-  return terrainLayerParams(layers[l].noise, type, hash, budgets[ring].octaves[l], budgets[ring].lastOctaveWeight[l]);
+  uint octaves = needed ? budgets[ring].octaves[l] : 0u;
+  return terrainLayerParams(layers[l].noise, type, hash, octaves, budgets[ring].lastOctaveWeight[l]);
 }
 
-float layerNoise(uint l, vec3 offsetPlanet, uint ring) {
-  return rebasedLayerNoise(layerParams(l, ring), l, offsetPlanet);
+float layerNoise(uint l, vec3 offsetPlanet, uint ring, bool needed) {
+  return rebasedLayerNoise(layerParams(l, ring, needed), l, offsetPlanet);
 }
 
-vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring) {
-  return rebasedLayerNoiseGradient(layerParams(l, ring), l, offsetPlanet);
+vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring, bool needed) {
+  return rebasedLayerNoiseGradient(layerParams(l, ring, needed), l, offsetPlanet);
 }
 
 // Height in metres above the radius sphere at the point `offsetPlanet` (planet frame, metres

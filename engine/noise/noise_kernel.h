@@ -48,20 +48,24 @@ struct NoiseKernel {
   uint terrainRebased = 0u;
 
   // TERRAIN_LAYER_NOISE of common/terrain_height.glsl.
-  real terrainLayerNoise(uint l, vec3 p, uint /*context: unused on the CPU*/) {
+  real terrainLayerNoise(uint l, vec3 p, uint /*context: unused on the CPU*/, bool needed) {
     const TerrainKernelLayer& layer = terrainLayers[l];
     permutation = layer.permutation;
-    if (terrainRebased != 0u) return rebasedLayerNoise(layer.params, l, p);
-    return evaluateNoise(layer.params, p * layer.frequency);
+    NoiseParams params = layer.params;
+    if (!needed) params.octaves = 0u;
+    if (terrainRebased != 0u) return rebasedLayerNoise(params, l, p);
+    return evaluateNoise(params, p * layer.frequency);
   }
 
   // TERRAIN_LAYER_NOISE_GRADIENT: the same noise with its gradient with respect to p (a plain
   // walk samples p · frequency, so its gradient is the noise's times the frequency).
-  vec4 terrainLayerNoiseGradient(uint l, vec3 p, uint /*context: unused on the CPU*/) {
+  vec4 terrainLayerNoiseGradient(uint l, vec3 p, uint /*context: unused on the CPU*/, bool needed) {
     const TerrainKernelLayer& layer = terrainLayers[l];
     permutation = layer.permutation;
-    if (terrainRebased != 0u) return rebasedLayerNoiseGradient(layer.params, l, p);
-    const vec4 noise = evaluateNoiseGradient(layer.params, p * layer.frequency);
+    NoiseParams params = layer.params;
+    if (!needed) params.octaves = 0u;
+    if (terrainRebased != 0u) return rebasedLayerNoiseGradient(params, l, p);
+    const vec4 noise = evaluateNoiseGradient(params, p * layer.frequency);
     return withGradient(noise.x, gradientOf(noise) * layer.frequency);
   }
 
@@ -69,8 +73,8 @@ struct NoiseKernel {
 #define OCTAVE_SHIFT(layer, i) octaveShifts[(layer)*kNoiseMaxOctaves + (i)]
 #define PERM(i) permutation[i]
 #define TERRAIN_LAYER_COUNT terrainLayerCount
-#define TERRAIN_LAYER_NOISE(l, p, context) terrainLayerNoise(l, p, context)
-#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, context) terrainLayerNoiseGradient(l, p, context)
+#define TERRAIN_LAYER_NOISE(l, p, context, needed) terrainLayerNoise(l, p, context, needed)
+#define TERRAIN_LAYER_NOISE_GRADIENT(l, p, context, needed) terrainLayerNoiseGradient(l, p, context, needed)
 #define TERRAIN_LAYER(l) terrainLayers[l].shape
 #define TERRAIN_LAYER_AMPLITUDE(l) terrainLayers[l].amplitude
 #include "common/noise.glsl"

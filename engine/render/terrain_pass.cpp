@@ -229,8 +229,10 @@ TerrainPass::Lod TerrainPass::chooseLod(const TerrainView& view, const ClipmapFr
                                          view.height * settings_.subPixelRings, params.ringsPerLevel);
   lod.rings = selectRings(params.levels, params.ringsPerLevel, thetaMax, thetaMin);
   const uint32_t rings = mesh_.ringCount();
-  lod.heightFirstRing = lod.rings.firstRing > 0 ? lod.rings.firstRing - 1 : 0;
-  lod.heightLastRing = std::min(lod.rings.lastRing + 1, rings - 1);
+  // Heights of the drawn rings only: each vertex's normal comes from its own gradient (issue 19),
+  // where differences of neighbours took one more ring on each side.
+  lod.heightFirstRing = lod.rings.firstRing;
+  lod.heightLastRing = std::min(lod.rings.lastRing, rings - 1);
   lod.metresPerVertexAtNadir =
       metresPerVertexAtNadir(radius, params.levels, params.ringsPerLevel, params.numPhi, lod.rings.lastRing);
   lod.poleCapRadiusM = poleCapRadiusM(radius, params.levels, params.ringsPerLevel, lod.rings.lastRing);

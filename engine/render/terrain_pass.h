@@ -71,7 +71,7 @@ struct TerrainFrameInfo {
   ClipmapFrame orientation;      // of the mesh (while the LOD is frozen: the frozen frame's)
   ClipmapFrame viewOrientation;  // of this camera (= orientation unless frozen): for passes around the camera (sky)
   RingRange rings;
-  uint32_t heightFirstRing = 0;  // rings whose heights are computed (one beyond the drawn ones)
+  uint32_t heightFirstRing = 0;  // rings whose heights are computed (the drawn ones)
   uint32_t heightLastRing = 0;
   double groundHeightM = 0.0;  // CPU reference height under the camera
   double heightAboveGroundM = 0.0;

@@ -10,14 +10,17 @@
 //
 // The includer defines, before including:
 //   TERRAIN_LAYER_COUNT                 the number of layers (at most kTerrainMaxLayers)
-//   TERRAIN_LAYER_NOISE(l, p, context)  layer l's noise value at p, through terrainLayerParams
-//                                       and rebasedLayerNoise below (or evaluateNoise for the
-//                                       double reference); `context` is what terrainHeightSum
-//                                       was given (the mesh: the ring)
+//   TERRAIN_LAYER_NOISE(l, p, context, needed)  layer l's noise value at p, through
+//                                       terrainLayerParams and rebasedLayerNoise below (or
+//                                       evaluateNoise for the double reference); `context` is
+//                                       what terrainHeightSum was given (the mesh: the ring).
+//                                       Where `needed` is false the layer's mask is 0 there, so
+//                                       its value does not matter: evaluate it with no octaves
+//                                       (any finite value will do)
 //   TERRAIN_LAYER(l)                    layer l's TerrainLayer (its curves and mask are read)
 //   TERRAIN_LAYER_AMPLITUDE(l)          its amplitude in the evaluation's precision
 // and, for terrainHeightGradientSum (compiled only where it is defined):
-//   TERRAIN_LAYER_NOISE_GRADIENT(l, p, context)  TERRAIN_LAYER_NOISE with its gradient with
+//   TERRAIN_LAYER_NOISE_GRADIENT(l, p, context, needed)  TERRAIN_LAYER_NOISE with its gradient with
 //                                       respect to p, vec4(value, d/dx, d/dy, d/dz), the value
 //                                       bit-identical to TERRAIN_LAYER_NOISE's
 // and TERRAIN_UNROLLED_LAYERS where layer indices must be constants: a shader specialized on the
@@ -124,16 +127,20 @@ vec2 terrainCurveWithSlope(uint l, uint first, uint count, real x) {
   return vec2(terrainHermite(a, b, t, width), slope);
 }
 
-// Layer l's value from its noise value and the value of the layer that masks it (ignored when
-// none does): the transfer curve, then the mask through the mask curve.
-real terrainLayerValue(uint l, real noiseValue, real maskSource) {
+// Layer l's mask from the value of the layer that masks it, through the mask curve; 1 where no
+// layer masks it.
+real terrainLayerMask(uint l, real maskSource) {
+  if (TERRAIN_LAYER(l).maskLayer == kTerrainNoMask) return real(1.0f);
+  if (TERRAIN_LAYER(l).maskKnots == 0u) return maskSource;
+  return terrainCurve(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, maskSource);
+}
+
+// Layer l's value from its noise value and its mask (terrainLayerMask): the transfer curve, then
+// the mask.
+real terrainLayerValue(uint l, real noiseValue, real mask) {
   PRECISE real value = noiseValue;
   if (TERRAIN_LAYER(l).curveKnots > 0u) value = terrainCurve(l, 0u, TERRAIN_LAYER(l).curveKnots, value);
-  if (TERRAIN_LAYER(l).maskLayer != kTerrainNoMask) {
-    PRECISE real mask = maskSource;
-    if (TERRAIN_LAYER(l).maskKnots > 0u) mask = terrainCurve(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, mask);
-    value = value * mask;
-  }
+  if (TERRAIN_LAYER(l).maskLayer != kTerrainNoMask) value = value * mask;
   return value;
 }
 
@@ -156,10 +163,15 @@ real terrainLayerValue(uint l, real noiseValue, real maskSource) {
 
 // One layer of terrainHeightSum: its value kept for the layers it masks, its term added. A mask
 // layer is always an earlier one (the parser's rule); any other index reads this layer's 0.
+// Where the mask is exactly 0 the layer adds nothing whatever its noise, so the noise is
+// evaluated with no octaves there: most of a planet for masked mountains, and on lavapipe an
+// octave loop ends as soon as all its lanes are done. The value is then 0 (or −0) as before.
 #define TERRAIN_HEIGHT_STEP(l)                                                                        \
   {                                                                                                   \
     uint source = TERRAIN_LAYER(l).maskLayer < (l) ? TERRAIN_LAYER(l).maskLayer : (l);                 \
-    values[l] = terrainLayerValue(l, TERRAIN_LAYER_NOISE(l, p, context), values[source]);             \
+    PRECISE real mask = terrainLayerMask(l, values[source]);                                          \
+    bool needed = mask != real(0.0f);                                                                 \
+    values[l] = terrainLayerValue(l, TERRAIN_LAYER_NOISE(l, p, context, needed), mask);               \
     sum += TERRAIN_LAYER_AMPLITUDE(l) * values[l];                                                    \
   }
 
@@ -175,10 +187,19 @@ real terrainHeightSum(real baseHeight, real heightScale, vec3 p, uint context) {
 #undef TERRAIN_HEIGHT_STEP
 
 #ifdef TERRAIN_LAYER_NOISE_GRADIENT
-// terrainLayerValue with its gradient, from the noise's and the mask source's (values with
-// gradients): for value = c(n) · m(s), grad = c'(n) grad n · m(s) + c(n) · m'(s) grad s. The value
-// with terrainLayerValue's operations (bit-identical).
-vec4 terrainLayerValueGradient(uint l, vec4 noiseValue, vec4 maskSource) {
+// terrainLayerMask with its gradient, from the mask source's (a value with its gradient).
+vec4 terrainLayerMaskGradient(uint l, vec4 maskSource) {
+  if (TERRAIN_LAYER(l).maskLayer == kTerrainNoMask) return withGradient(real(1.0f), vec3(real(0.0f)));
+  if (TERRAIN_LAYER(l).maskKnots == 0u) return maskSource;
+  vec2 curve = terrainCurveWithSlope(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, maskSource.x);
+  PRECISE vec3 gradient = gradientOf(maskSource) * curve.y;
+  return withGradient(curve.x, gradient);
+}
+
+// terrainLayerValue with its gradient, from the noise's and the mask's (values with gradients):
+// for value = c(n) · m, grad = c'(n) grad n · m + c(n) · grad m. The value with
+// terrainLayerValue's operations (bit-identical).
+vec4 terrainLayerValueGradient(uint l, vec4 noiseValue, vec4 mask) {
   PRECISE real value = noiseValue.x;
   PRECISE vec3 gradient = gradientOf(noiseValue);
   if (TERRAIN_LAYER(l).curveKnots > 0u) {
@@ -187,24 +208,23 @@ vec4 terrainLayerValueGradient(uint l, vec4 noiseValue, vec4 maskSource) {
     gradient = gradient * curve.y;
   }
   if (TERRAIN_LAYER(l).maskLayer != kTerrainNoMask) {
-    PRECISE real mask = maskSource.x;
-    PRECISE vec3 maskGradient = gradientOf(maskSource);
-    if (TERRAIN_LAYER(l).maskKnots > 0u) {
-      vec2 curve = terrainCurveWithSlope(l, kTerrainCurveKnots, TERRAIN_LAYER(l).maskKnots, mask);
-      mask = curve.x;
-      maskGradient = maskGradient * curve.y;
-    }
-    gradient = gradient * mask + maskGradient * value;
-    value = value * mask;
+    gradient = gradient * mask.x + gradientOf(mask) * value;
+    value = value * mask.x;
   }
   return withGradient(value, gradient);
 }
 
 // One layer of terrainHeightGradientSum: TERRAIN_HEIGHT_STEP with each value's gradient beside it.
+// Where the mask is 0 the noise is skipped as there: the value is the same, and the gradient too
+// but where a mask crosses 0 with a slope (c(n) · grad m then depends on the noise; a set of
+// measure zero, where the normal is that of the point beside it).
 #define TERRAIN_HEIGHT_GRADIENT_STEP(l)                                                                  \
   {                                                                                                      \
     uint source = TERRAIN_LAYER(l).maskLayer < (l) ? TERRAIN_LAYER(l).maskLayer : (l);                    \
-    values[l] = terrainLayerValueGradient(l, TERRAIN_LAYER_NOISE_GRADIENT(l, p, context), values[source]); \
+    vec4 mask = terrainLayerMaskGradient(l, values[source]);                                             \
+    bool needed = mask.x != real(0.0f);                                                                  \
+    vec4 noise = TERRAIN_LAYER_NOISE_GRADIENT(l, p, context, needed);                                    \
+    values[l] = terrainLayerValueGradient(l, noise, mask);                                               \
     sum += TERRAIN_LAYER_AMPLITUDE(l) * values[l].x;                                                     \
     gradient += gradientOf(values[l]) * real(TERRAIN_LAYER_AMPLITUDE(l));                                \
   }
