@@ -6,27 +6,38 @@
 
 layout(set = 0, binding = kRenderBindingPatches) uniform sampler2DArray patches;
 layout(set = 0, binding = kRenderBindingTransmittance) uniform sampler2D transmittanceTable;
+layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 
 #include "atmosphere_lookup.glsl"
+#include "shared/relief_params.h"
 
 // Normal (local frame) and height at this pixel from the patch levels, chosen like a mip level:
 // lod = log2(pixel footprint / finest texel), so detail changes continuously across the screen
 // (no rectangles where one level ends). Level floor(lod) and the next are blended by the
 // fraction; a level that does not cover the pixel (or is within its outer tenth) hands its
-// weight on to coarser ones, and beyond the coarsest the vertex values remain.
+// weight on to coarser ones.
 // The levels lie on the camera's cube face, projected from the centre (face coordinates are
 // tan of the angle from the face normal): far beyond the face, near the edge of the visible
 // hemisphere from orbit, one texel stretches over tens of pixels and the coast turned into
-// blocks. There (more than ~65° from the face normal) the patches fade out to the vertex values.
+// blocks. There (more than ~65° from the face normal) the patches fade out.
+// What the patches leave goes to the relief cube (relief_cube.h: the whole planet at a fixed
+// spacing, mipmapped) where its texels are at most ~4 pixels wide, else to the vertex values:
+// from orbit, beyond the face and at quality `low`, the coast follows the cube's texels instead
+// of the mesh's triangles, hundreds of km wide near the limb; near the camera, where the cube is
+// far coarser than a pixel, the vertices (every octave the ring can show) stay.
 void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, out vec3 normal, out float height) {
   vec3 accumulatedNormal = vec3(0.0f);
   float accumulatedHeight = 0.0f;
   float remaining = 1.0f;
   uint levels = uint(frame.refMinusNadir.w);
-  // Face units per pixel (derivatives taken in uniform control flow, before any branch).
+  // Face units per pixel, and the sphere's angle per pixel (radians; up is the unit sphere
+  // normal), both from derivatives taken in uniform control flow, before any branch.
   float footprint = min(length(dFdx(face)), length(dFdy(face)));
+  vec3 unitUp = normalize(up);
+  float angleX = length(dFdx(unitUp));
+  float angleY = length(dFdy(unitUp));
   vec3 faceNormal = mat3(frame.planetToLocal) * frame.faceNormal.xyz;
-  float onFace = smoothstep(0.35f, 0.45f, dot(normalize(up), faceNormal));
+  float onFace = smoothstep(0.35f, 0.45f, dot(unitUp, faceNormal));
   if (levels > 0u && onFace > 0.0f) {
     vec4 finest = frame.patchLevels[0];
     float resolution = float(textureSize(patches, 0).x);
@@ -52,6 +63,19 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
   accumulatedNormal *= onFace;
   accumulatedHeight *= onFace;
   remaining = 1.0f - onFace * (1.0f - remaining);
+  // The relief cube: texels 2 / size radians wide at a face's centre; its mip level from the
+  // larger of the pixel's two extents (softer along a grazing view, never aliased).
+  uint reliefSize = uint(textureSize(reliefCube, 0).x);
+  float texelAngle = 2.0f / float(reliefSize);
+  float pixelsPerTexel = texelAngle / max(min(angleX, angleY), 1e-30f);
+  float relief = reliefSize > kReliefStandInSize ? remaining * (1.0f - smoothstep(4.0f, 8.0f, pixelsPerTexel)) : 0.0f;
+  if (relief > 0.0f) {
+    float reliefLod = max(log2(max(angleX, angleY) / texelAngle), 0.0f);
+    vec4 texel = textureLod(reliefCube, mat3(frame.localToPlanet) * unitUp, reliefLod);
+    accumulatedNormal += relief * normalize(mat3(frame.planetToLocal) * texel.xyz);
+    accumulatedHeight += relief * texel.w;
+    remaining -= relief;
+  }
   normal = normalize(accumulatedNormal + remaining * normalize(vertexNormal));
   height = accumulatedHeight + remaining * vertexHeight;
 }

@@ -15,6 +15,7 @@
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_height.h"
 #include "render/patch_textures.h"
+#include "render/relief_cube.h"
 #include "render/sky_tables.h"
 #include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
@@ -44,6 +45,7 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // budgets
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // patches
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // relief
 };
 constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
 
@@ -128,6 +130,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   surface_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
   normals_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
   attributes_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
+  // Without the relief a stand-in of kReliefStandInSize texels is bound, which the shaders skip.
+  relief_ = std::make_unique<ReliefCube>(context, *data_, settings.relief ? settings.reliefSize : kReliefStandInSize);
   // Per-frame data the CPU writes: host-visible, one copy per frame slot.
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     remainders_[slot] = {context,
@@ -194,6 +198,8 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   desc.polygonMode = wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
   // The mesh's triangles are counter-clockwise seen from outside. The projection's y flip and
   // Vulkan's y-down framebuffer cancel, so they stay counter-clockwise on screen.
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingRelief, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             relief_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, relief_->sampler());
   desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   desc.cullMode = wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
   return vk::createGraphicsPipeline(context_, desc);

@@ -32,6 +32,7 @@ class GpuTimer;
 namespace planet {
 
 class PatchTextures;
+class ReliefCube;
 class SkyTables;
 
 // Where the vertex heights come from. Compute is the design; the others exist to measure it
@@ -56,6 +57,10 @@ struct TerrainSettings {
   bool limitOctaves = true;  // octave budgets per ring (off: every octave everywhere, for comparisons)
   bool patches = true;       // per-pixel detail from the patch textures
   PatchSettings patchSettings;
+  // Texels per face side of the relief cube (relief_cube.h): the whole planet's heights and
+  // normals where the patches do not reach (512: ~20 km on Earth, 25 MB with its mips).
+  uint32_t reliefSize = 512;
+  bool relief = true;  // off: shade from the vertex values where the patches end (for comparisons)
   bool wireframe = false;           // debug: triangle edges only (no patch textures, no water)
   double bandWavelengthM = 40000.0;  // largest octave of the colour noise (vegetation, frayed band edges)
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
@@ -225,6 +230,7 @@ class TerrainPass {
   // The GPU objects, in the order of creation (destroyed in reverse).
   std::unique_ptr<PlanetGpuData> data_;
   std::unique_ptr<PatchTextures> patches_;
+  std::unique_ptr<ReliefCube> relief_;
   vk::Owned<vk::Buffer> meshVertices_;
   vk::Owned<vk::Buffer> indices_;  // the mesh's indices, then a fan to the pole for every ring
   vk::Owned<vk::Buffer> budgets_;

@@ -1,5 +1,6 @@
 #include "vk/image.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -32,18 +33,22 @@ uint32_t formatTexelSize(VkFormat format) {
 namespace {
 
 Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                  VkImageViewType viewType, bool cube = false) {
+                  VkImageViewType viewType, bool cube = false, uint32_t mipLevels = 1) {
   if (extent.width == 0 || extent.height == 0 || layers == 0) throw Error("cannot create an image of size 0");
+  if (mipLevels == 0 || (std::max(extent.width, extent.height) >> (mipLevels - 1)) == 0)
+    throw Error("cannot create " + std::to_string(mipLevels) + " mip levels for an image of " +
+                std::to_string(extent.width) + "x" + std::to_string(extent.height));
   // Owned until complete: a throw destroys what was created so far.
   Owned<Image> image(context, Image{});
   image->format = format;
   image->extent = extent;
   image->layers = layers;
+  image->mipLevels = mipLevels;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
   info.extent = {extent.width, extent.height, 1};
-  info.mipLevels = 1;
+  info.mipLevels = mipLevels;
   info.arrayLayers = layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -62,6 +67,7 @@ Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat
   VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image->view));
   if (cube) {
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_CUBE;
+    viewInfo.subresourceRange.levelCount = mipLevels;
     VK_CHECK(vkCreateImageView(context.device, &viewInfo, nullptr, &image->cubeView));
   }
   return image.release();
@@ -78,8 +84,9 @@ Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, V
   return createImage(context, extent, layers, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
 }
 
-Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage) {
-  return createImage(context, {size, size}, 6, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY, true);
+Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage,
+                      uint32_t mipLevels) {
+  return createImage(context, {size, size}, 6, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY, true, mipLevels);
 }
 
 void destroyImage(Context& context, Image& image) {
@@ -109,8 +116,8 @@ void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image.image;
   bool depth = image.format == VK_FORMAT_D32_SFLOAT;
-  barrier.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1,
-                              0, image.layers};
+  barrier.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
+                              image.mipLevels, 0, image.layers};
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &barrier;

@@ -20,6 +20,7 @@ struct Image {
   VkExtent2D extent{0, 0};
   VkImageView cubeView = VK_NULL_HANDLE;             // createImageCube only: the six layers as a cube
   uint32_t layers = 1;                               // array layers
+  uint32_t mipLevels = 1;                            // `view` shows level 0 only; `cubeView` every level
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
 };
 
@@ -31,13 +32,16 @@ Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImag
 Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
                          VkImageUsageFlags usage);
 // Six square layers (+x, −x, +y, −y, +z, −z) that can be sampled as a cube map: `view` is the
-// 2D-array view (for storage writes), `cubeView` the cube view (for samplerCube).
-Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage);
+// 2D-array view of mip level 0 (for storage writes), `cubeView` the cube view of all
+// `mipLevels` levels (for samplerCube; the caller fills the smaller levels).
+Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage,
+                      uint32_t mipLevels = 1);
 void destroyImage(Context& context, Image& image);
 // A sampler (vk::Owned<VkSampler> destroys it).
 VkSampler createSampler(Context& context, const VkSamplerCreateInfo& info);
 
-// Records a layout transition of the whole image with a full barrier between the given stages.
+// Records a layout transition of the whole image (every layer and level) with a full barrier
+// between the given stages.
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                      VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 

@@ -31,7 +31,8 @@ GPU_CONST uint kRenderBindingPermutations = 8u;    // uint[kTerrainMaxLayers * k
 GPU_CONST uint kRenderBindingBudgets = 9u;         // RingBudget[rings + 1] (the pole last)
 GPU_CONST uint kRenderBindingPatches = 10u;        // sampler2DArray: normal (planet frame), height m
 GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere's transmittance table
-GPU_CONST uint kRenderBindingCount = 12u;
+GPU_CONST uint kRenderBindingRelief = 12u;         // samplerCube: normal (planet frame), height m (relief_params.h)
+GPU_CONST uint kRenderBindingCount = 13u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
