@@ -108,5 +108,109 @@ TEST(CloudMotion, WeightsSumToOneAndTheLayerDriftsWithTheWind) {
   EXPECT_NEAR(cloudMotion(clouds, 6.371e6, 3600.0).driftRad, 10.0 * 3600.0 / layerRadius, 1e-6);
 }
 
+// --- Multiple scattering (issue 21; Hillaire 2020, §5.5) ----------------------------------------
+
+double skyLuminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// Energy: every order after the first returns less than it received (f_ms < 1), so the series
+// converges and Ψ_ms is finite and non-negative everywhere, for both presets with air.
+TEST(AtmosphereModel, MultipleScatteringTableIsFiniteAndConservesEnergy) {
+  for (const char* preset : {"earth", "mars"}) {
+    const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset(preset));
+    const MultipleScatteringTable table = multipleScatteringTable(params);
+    ASSERT_EQ(table.psi.size(), size_t(gpu::kMultiScatteringSize) * gpu::kMultiScatteringSize);
+    double mostTransfer = 0.0;
+    for (size_t i = 0; i < table.psi.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(table.psi[i][c]) && table.psi[i][c] >= 0.0) << preset << " texel " << i;
+        ASSERT_GE(table.transfer[i][c], 0.0) << preset << " texel " << i;
+        mostTransfer = std::max(mostTransfer, table.transfer[i][c]);
+      }
+    // Earth's blue at the ground returns about a third; nothing comes near 1.
+    EXPECT_LT(mostTransfer, 0.8) << preset;
+    EXPECT_GT(mostTransfer, 0.05) << preset;
+  }
+  // No air: nothing scatters.
+  const MultipleScatteringTable none = multipleScatteringTable(makeAtmosphereParams(resolvePreset("moon")));
+  for (const glm::dvec3& psi : none.psi) EXPECT_EQ(psi, glm::dvec3(0.0));
+}
+
+// The table reads the sun's transmittance from a table as the GPU does; integrating it directly
+// at each sample gives the same Ψ_ms within 1 % where the sun is up.
+TEST(AtmosphereModel, MultipleScatteringTableMatchesDirectIntegration) {
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("earth"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  for (uint32_t y : {0u, 5u, 16u, 31u})
+    for (uint32_t x : {18u, 24u, 31u}) {
+      const glm::dvec2 hMuS = multipleScatteringTexelAltitudeMuS(params, (x + 0.5) / gpu::kMultiScatteringSize,
+                                                                 (y + 0.5) / gpu::kMultiScatteringSize);
+      const MultipleScatteringPoint direct = multipleScatteringAt(params, hMuS.x, hMuS.y, 1024);
+      const size_t i = size_t(y) * gpu::kMultiScatteringSize + x;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(table.psi[i][c], direct.psi[c], 0.01 * direct.psi[c]) << "texel " << x << ", " << y << " c " << c;
+        EXPECT_NEAR(table.transfer[i][c], direct.transfer[c], 1e-9) << "texel " << x << ", " << y;
+      }
+    }
+}
+
+// More air scatters more: doubling Rayleigh and Mie raises Ψ_ms by day (a little near the ground,
+// where the sunlit ground, seen through more air, gives much of it) and the share f_ms that one
+// more scattering returns much more.
+TEST(AtmosphereModel, MultipleScatteringGrowsWithDensity) {
+  PlanetDescription earth = resolvePreset("earth");
+  const gpu::AtmosphereParams thin = makeAtmosphereParams(earth);
+  earth.atmosphere.rayleighScattering *= 2.0;
+  earth.atmosphere.mieScattering *= 2.0;
+  const gpu::AtmosphereParams dense = makeAtmosphereParams(earth);
+  const MultipleScatteringTable thinTable = multipleScatteringTable(thin);
+  const MultipleScatteringTable denseTable = multipleScatteringTable(dense);
+  for (double altitudeM : {0.0, 5'000.0, 20'000.0})
+    for (double muS : {1.0, 0.5}) {
+      const glm::dvec3 a = thinTable.sample(thin, altitudeM, muS), b = denseTable.sample(dense, altitudeM, muS);
+      EXPECT_GT(skyLuminance(b), 1.03 * skyLuminance(a)) << altitudeM << " m, muS " << muS;
+    }
+  // And so does the share that one more scattering returns.
+  EXPECT_GT(denseTable.transfer[0].g, 1.5 * thinTable.transfer[0].g);
+}
+
+// What the sky adds, σ_s · Ψ_ms, is ~0 at the top of the atmosphere (no air there) and ~0 at
+// night (the sun far below the horizon lights none of the air a point sees).
+TEST(AtmosphereModel, MultipleScatteringVanishesAtTheTopAndAtNight) {
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("earth"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  const double top = params.radii.y;
+  const auto source = [&](double h, double muS) {
+    const double rayleigh = double(params.rayleigh.g) * std::exp(-h * double(params.rayleigh.w));
+    const double mie = double(params.mieScattering.g) * std::exp(-h * double(params.mieScattering.w));
+    return (rayleigh + mie) * table.sample(params, h, muS).g;
+  };
+  EXPECT_LT(source(top, 1.0), 1e-4 * source(0.0, 1.0));
+  const double noon = table.sample(params, 0.0, 1.0).b;
+  EXPECT_GT(noon, 0.0);
+  for (double h : {0.0, 10'000.0, 50'000.0, top}) EXPECT_LT(table.sample(params, h, -1.0).b, 1e-6 * noon) << h;
+}
+
+// Twilight (issue 21, point 3): 10 km up with the sun 4° below the horizon, single scattering
+// leaves the zenith faint and purple (red above green); the light scattered more than once adds
+// half again to its blue.
+TEST(AtmosphereModel, MultipleScatteringLightsTheTwilightZenithBlue) {
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("earth"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  const double muS = std::sin(-4.0 * 3.14159265358979 / 180.0);
+  const SkySample zenith = skyRadiance(params, 10'000.0, 1.0, muS, muS, 256, 256, &table);
+  EXPECT_GT(zenith.total.b, zenith.total.r);
+  EXPECT_GT(zenith.total.b, 1.3 * zenith.radiance.b);
+  EXPECT_GT(zenith.total.b, zenith.total.g);
+  EXPECT_GT(skyLuminance(zenith.total), 1.1 * skyLuminance(zenith.radiance));
+  // Without a table the total is the single scattering.
+  const SkySample single = skyRadiance(params, 10'000.0, 1.0, muS, muS, 256, 256);
+  EXPECT_EQ(single.total, single.radiance);
+  EXPECT_EQ(single.radiance, zenith.radiance);
+  // By day it adds a part, not the whole: at noon from the ground it is under half the zenith's light.
+  const SkySample noon = skyRadiance(params, 0.0, 1.0, 1.0, 1.0, 256, 256, &table);
+  EXPECT_GT(skyLuminance(noon.total), skyLuminance(noon.radiance));
+  EXPECT_LT(skyLuminance(noon.total), 2.0 * skyLuminance(noon.radiance));
+}
+
 }  // namespace
 }  // namespace planet

@@ -10,6 +10,11 @@
 #include "core/error.h"
 #include "core/process_memory.h"
 
+namespace planet::cli {
+// planet sky (cmd_sky.cpp; declared here as cli_common.h is shared with work in flight).
+void addSkyCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+}  // namespace planet::cli
+
 int main(int argc, char** argv) {
   using namespace planet;
   keepLargeBlocksOutOfTheHeap();  // before any allocation the driver's compiles could fragment
@@ -32,6 +37,7 @@ int main(int argc, char** argv) {
   cli::addStatsCommand(app, exitCode);
   cli::addRenderCommand(app, global, exitCode);
   cli::addViewCommand(app, global, exitCode);
+  cli::addSkyCommand(app, global, exitCode);
 
   try {
     app.parse(argc, argv);

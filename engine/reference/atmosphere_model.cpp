@@ -7,13 +7,33 @@
 #include <numbers>
 
 #include "common/definitions.h"
+#include "core/parallel_for.h"
 
 namespace planet {
 namespace {
 
 using gpu::AtmosphereParams;
+using gpu::kMultiScatteringDirections;
+using gpu::kMultiScatteringGroundAlbedo;
+using gpu::kMultiScatteringSize;
+using gpu::kMultiScatteringSteps;
 using gpu::kTransmittanceHeight;
+using gpu::kTransmittanceSteps;
 using gpu::kTransmittanceWidth;
+
+// A table of width × height texels read as the GPU's linear sampler with clamp-to-edge reads
+// it: (u, v) in [0, 1], texel centres at (i + 0.5) / size.
+glm::dvec3 sampleBilinear(const std::vector<glm::dvec3>& table, uint32_t width, uint32_t height, double u, double v) {
+  const double x = u * width - 0.5, y = v * height - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const double fx = x - x0, fy = y - y0;
+  const auto at = [&](double i, double j) {
+    const int ix = std::clamp(int(i), 0, int(width) - 1), iy = std::clamp(int(j), 0, int(height) - 1);
+    return table[size_t(iy) * width + size_t(ix)];
+  };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1.0, y0), fx), glm::mix(at(x0, y0 + 1.0), at(x0 + 1.0, y0 + 1.0), fx),
+                  fy);
+}
 
 // shaders/common/atmosphere.glsl compiled as C++: its functions become members, so that one
 // source gives the GPU code and this reference.
@@ -22,17 +42,39 @@ struct AtmosphereKernel {
   PLANET_GLSL_KERNEL(Real)
 
   uint32_t sunSteps = 512;  // midpoint steps of each sun transmittance
+  // When set, the sun's transmittance is read from this double transmittance table as the GPU
+  // reads its own (atmosphere_lookup.glsl), instead of integrated.
+  const std::vector<glm::dvec3>* transmittanceTable = nullptr;
+  // MULTIPLE_SCATTERING's table.
+  const MultipleScatteringTable* multipleScatteringTable = nullptr;
+
+  static real cos(real x) { return std::cos(x); }
 
   // The sun's transmittance with the planet's shadow: zero once the sun is below the horizon
-  // of altitude h (the GPU softens this edge over the sun's disc; the reference is sharp).
+  // of altitude h (the GPU softens this edge over the sun's disc; the reference is sharp, except
+  // when it reads a table as the GPU does).
   vec3 sunTransmittance(const AtmosphereParams& a, real h, real muS) {
+    if (transmittanceTable) {
+      const real R = a.radii.x, hc = max(h, real(0));
+      const real horizon = -sqrt(hc * (real(2) * R + hc)) / (R + hc);
+      const real visible = glm::smoothstep(-real(a.radii.z), real(a.radii.z), muS - horizon);
+      if (visible <= real(0)) return vec3(0);
+      const vec2 uv = transmittanceUv(a, hc, muS);
+      return sampleBilinear(*transmittanceTable, kTransmittanceWidth, kTransmittanceHeight, uv.x, uv.y) * visible;
+    }
     if (rayHitsGround(real(a.radii.x), h, muS)) return vec3(0);
     vec3 depth = opticalDepthToTop(a, h, muS, sunSteps);
     return vec3(exp(-depth.x), exp(-depth.y), exp(-depth.z));
   }
 
+  vec3 multipleScatteringLookup(const AtmosphereParams& a, real h, real muS) {
+    return multipleScatteringTable->sample(a, h, muS);
+  }
+
 #define SUN_TRANSMITTANCE(a, h, muS) sunTransmittance(a, h, muS)
+#define MULTIPLE_SCATTERING(a, h, muS) multipleScatteringLookup(a, h, muS)
 #include "common/atmosphere.glsl"
+#undef MULTIPLE_SCATTERING
 #undef SUN_TRANSMITTANCE
 };
 
@@ -69,27 +111,88 @@ glm::dvec2 transmittanceTexelAltitudeMu(const AtmosphereParams& atmosphere, doub
 }
 
 SkySample skyRadiance(const AtmosphereParams& atmosphere, double altitudeM, double mu, double muS, double nu,
-                      uint32_t steps, uint32_t sunSteps) {
+                      uint32_t steps, uint32_t sunSteps, const MultipleScatteringTable* multipleScattering) {
   Kernel kernel;
   kernel.sunSteps = sunSteps;
   const double R = atmosphere.radii.x;
   const double top = atmosphere.radii.y;
   double start = 0.0;
   double h = altitudeM, m = mu, ms = muS;
-  if (altitudeM > top) {  // outside: start where the ray enters the atmosphere
-    glm::dvec2 enter = kernel.raySphere(R, altitudeM, mu, top);
-    if (enter.x < 0.0) return {glm::dvec3(0.0), glm::dvec3(1.0)};
-    start = enter.x;
+  double length = 0.0;
+  if (altitudeM >= top) {  // outside (or on the top sphere): start where the ray enters the atmosphere
+    const glm::dvec2 hits = kernel.raySphere(R, altitudeM, mu, top);
+    if (hits.x < 0.0 || hits.y <= hits.x) return {glm::dvec3(0.0), glm::dvec3(1.0), glm::dvec3(0.0)};
+    start = hits.x;
     h = top;
     const double r = R + altitudeM;
     m = (r * mu + start) / (R + h);
     ms = (r * muS + start * nu) / (R + h);
+    // The end from the viewpoint: from the entry point itself, on the top sphere, a ray going down
+    // would meet that sphere at distance 0 and read it as where it leaves.
+    const double end = kernel.rayHitsGround(R, altitudeM, mu) ? kernel.raySphere(R, altitudeM, mu, 0.0).x : hits.y;
+    length = end - start;
+  } else {
+    length = kernel.rayHitsGround(R, h, m) ? kernel.raySphere(R, h, m, 0.0).x : kernel.distanceToTop(atmosphere, h, m);
   }
-  const double length =
-      kernel.rayHitsGround(R, h, m) ? kernel.raySphere(R, h, m, 0.0).x : kernel.distanceToTop(atmosphere, h, m);
   SkySample sample;
   kernel.singleScattering(atmosphere, h, m, ms, nu, length, steps, sample.radiance, sample.transmittance);
+  sample.total = sample.radiance;
+  if (multipleScattering && atmosphere.radii.w != 0.0f) {
+    kernel.multipleScatteringTable = multipleScattering;
+    sample.total += kernel.multipleScattering(atmosphere, h, m, ms, nu, length, steps);
+  }
   return sample;
+}
+
+glm::dvec3 MultipleScatteringTable::sample(const AtmosphereParams& atmosphere, double altitudeM, double muS) const {
+  Kernel kernel;
+  const glm::dvec2 uv = kernel.multipleScatteringUv(atmosphere, altitudeM, muS);
+  return sampleBilinear(psi, kMultiScatteringSize, kMultiScatteringSize, uv.x, uv.y);
+}
+
+glm::dvec2 multipleScatteringTexelAltitudeMuS(const AtmosphereParams& atmosphere, double u, double v) {
+  Kernel kernel;
+  return kernel.multipleScatteringAltitudeMuS(atmosphere, u, v);
+}
+
+MultipleScatteringTable multipleScatteringTable(const AtmosphereParams& atmosphere) {
+  MultipleScatteringTable table;
+  const size_t texels = size_t(kMultiScatteringSize) * kMultiScatteringSize;
+  table.psi.assign(texels, glm::dvec3(0.0));
+  table.transfer.assign(texels, glm::dvec3(0.0));
+  if (atmosphere.radii.w == 0.0f) return table;  // no air: nothing scatters
+  // The transmittance table as atmosphere_transmittance.comp builds it, in double.
+  std::vector<glm::dvec3> transmittance(size_t(kTransmittanceWidth) * kTransmittanceHeight);
+  parallelFor(transmittance.size(), 256, 0, [&](size_t begin, size_t end) {
+    Kernel kernel;
+    for (size_t i = begin; i < end; ++i) {
+      const double u = (double(i % kTransmittanceWidth) + 0.5) / kTransmittanceWidth;
+      const double v = (double(i / kTransmittanceWidth) + 0.5) / kTransmittanceHeight;
+      const glm::dvec2 hMu = kernel.transmittanceAltitudeMu(atmosphere, u, v);
+      transmittance[i] = glm::exp(-kernel.opticalDepthToTop(atmosphere, hMu.x, hMu.y, kTransmittanceSteps));
+    }
+  });
+  parallelFor(texels, 16, 0, [&](size_t begin, size_t end) {
+    Kernel kernel;
+    kernel.transmittanceTable = &transmittance;
+    for (size_t i = begin; i < end; ++i) {
+      const double u = (double(i % kMultiScatteringSize) + 0.5) / kMultiScatteringSize;
+      const double v = (double(i / kMultiScatteringSize) + 0.5) / kMultiScatteringSize;
+      const glm::dvec2 hMuS = kernel.multipleScatteringAltitudeMuS(atmosphere, u, v);
+      kernel.multipleScatteringTexel(atmosphere, hMuS.x, hMuS.y, table.psi[i], table.transfer[i]);
+    }
+  });
+  return table;
+}
+
+MultipleScatteringPoint multipleScatteringAt(const AtmosphereParams& atmosphere, double altitudeM, double muS,
+                                             uint32_t sunSteps) {
+  Kernel kernel;
+  kernel.sunSteps = sunSteps;
+  MultipleScatteringPoint point{glm::dvec3(0.0), glm::dvec3(0.0)};
+  if (atmosphere.radii.w == 0.0f) return point;
+  kernel.multipleScatteringTexel(atmosphere, altitudeM, muS, point.psi, point.transfer);
+  return point;
 }
 
 glm::dvec3 skyIrradiance(const AtmosphereParams& atmosphere, double muS) {

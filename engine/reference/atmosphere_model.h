@@ -1,10 +1,12 @@
 // The atmosphere on the CPU (issue 4, point 2): the coefficients the shaders get, and the CPU
 // reference of shaders/common/atmosphere.glsl (the same source compiled as C++, in double),
-// used to check the GPU's transmittance table and to integrate the sky's irradiance.
+// used to check the GPU's transmittance and multiple-scattering tables, to integrate the sky's
+// irradiance, and by `planet sky`.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -33,12 +35,44 @@ glm::dvec2 transmittanceTexelAltitudeMu(const gpu::AtmosphereParams& atmosphere,
 // Single-scattered sky radiance (per the params' sun irradiance) seen from altitude h looking
 // along zenith cosine mu, with the sun at zenith cosine muS and view-sun cosine nu, over the
 // whole ray (to the top of the atmosphere, or to the ground where the ray meets it).
+// With a multiple-scattering table, `total` adds the light scattered two or more times along the
+// same samples (σ_s · Ψ_ms from the table); without one it is the single-scattered radiance.
+struct MultipleScatteringTable;
 struct SkySample {
-  glm::dvec3 radiance;
-  glm::dvec3 transmittance;
+  glm::dvec3 radiance;       // single scattering
+  glm::dvec3 transmittance;  // along the ray, to where it leaves the atmosphere or meets the ground
+  glm::dvec3 total;          // single and multiple scattering
 };
 SkySample skyRadiance(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu, double muS, double nu,
-                      uint32_t steps = 256, uint32_t sunSteps = 256);
+                      uint32_t steps = 256, uint32_t sunSteps = 256,
+                      const MultipleScatteringTable* multipleScattering = nullptr);
+
+// The multiple-scattering table (Hillaire 2020, §5.5; shaders/common/atmosphere.glsl) in double:
+// Ψ_ms and f_ms at every texel of the GPU's table (kMultiScatteringSize², row-major, rows of
+// altitude, columns of sun zenith cosine). The sun's transmittance comes from a double
+// transmittance table of the GPU's size and steps, read as the GPU reads its own (bilinear, the
+// planet's shadow softened over the sun's disc), so that the GPU table can be compared with it.
+struct MultipleScatteringTable {
+  std::vector<glm::dvec3> psi;       // Ψ_ms: radiance per steradian per unit sun irradiance
+  std::vector<glm::dvec3> transfer;  // f_ms: the share of isotropic light one more scattering returns
+  // Ψ_ms at altitude h for a sun at zenith cosine muS, bilinear between texel centres (clamped
+  // at the edges) as the GPU's sampler reads the table.
+  glm::dvec3 sample(const gpu::AtmosphereParams& atmosphere, double altitudeM, double muS) const;
+};
+MultipleScatteringTable multipleScatteringTable(const gpu::AtmosphereParams& atmosphere);
+
+// The altitude (x) and sun zenith cosine (y) that multiple-scattering table coordinates (u, v)
+// in [0, 1] stand for.
+glm::dvec2 multipleScatteringTexelAltitudeMuS(const gpu::AtmosphereParams& atmosphere, double u, double v);
+
+// Ψ_ms and f_ms at one point with the sun's transmittance integrated directly (`sunSteps`
+// midpoint steps, the planet's shadow sharp): a check of the table's way of getting it.
+struct MultipleScatteringPoint {
+  glm::dvec3 psi;
+  glm::dvec3 transfer;
+};
+MultipleScatteringPoint multipleScatteringAt(const gpu::AtmosphereParams& atmosphere, double altitudeM, double muS,
+                                             uint32_t sunSteps = 512);
 
 // Irradiance from the sky on a horizontal surface at the ground, for the sun at zenith
 // cosine muS: the hemisphere integral of skyRadiance · cos θ (no ground bounce).

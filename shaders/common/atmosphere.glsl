@@ -8,7 +8,8 @@
 // The rules of the common subset, types and builtins: definitions.glsl (C++: definitions.h).
 // The includer provides SUN_TRANSMITTANCE(a, h, muS): the transmittance from
 // altitude h toward a sun of zenith cosine muS, zero where the planet is in the way (GLSL: the
-// table; C++: the integral below).
+// table; C++: the integral below). An includer that defines MULTIPLE_SCATTERING(a, h, muS) (Ψ_ms
+// from the multiple-scattering table) also gets multipleScattering() along a ray.
 //
 // Every quantity is expressed through altitudes h above the planet radius R, never through
 // differences of radii: r² − r_s² = (h − h_s)(2R + h + h_s). In float, R² = 4·10¹³ m² keeps
@@ -171,5 +172,125 @@ void singleScattering(IN(AtmosphereParams) a, real h, real mu, real muS, real nu
   radiance = (rayleighSum * rayleighPhase(nu) + mieSum * miePhase(real(a.mieExtinction.w), nu)) * (dt * sun);
   transmittance = vec3(exp(-depth.x), exp(-depth.y), exp(-depth.z));
 }
+
+// Multiple scattering (Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere
+// Rendering Technique", §5.5). Light scattered two or more times is taken as isotropic, and the
+// radiance around a point as the same over the region that lights it. The second order at a
+// point is L2 = ∫ L'(ω) P_u dω over the sphere, with L' the single-scattered radiance arriving
+// from ω (isotropic phase P_u = 1/4π, plus the sunlit Lambertian ground where the ray ends);
+// the fraction of an isotropic unit radiance that one more scattering returns to the point is
+// f_ms = ∫ L_f(ω) P_u dω with L_f = ∫ σ_s T dt; all orders from the second on sum as a
+// geometric series, Ψ_ms = L2 / (1 − f_ms), per unit sun irradiance. A sample of the sky then
+// adds σ_s · Ψ_ms to its single scattering.
+
+// The table's parameterisation (Hillaire 2020, §5.5): u = (muS + 1) / 2, v = h / top, texel
+// centres at the ends of each range.
+vec2 multipleScatteringUv(IN(AtmosphereParams) a, real h, real muS) {
+  real top = real(a.radii.y);
+  real size = real(kMultiScatteringSize);
+  return vec2(unitToTexel(clamp(real(0.5f) * (muS + real(1.0f)), real(0.0f), real(1.0f)), size),
+              unitToTexel(clamp(h / top, real(0.0f), real(1.0f)), size));
+}
+
+// The inverse: the altitude (x) and sun zenith cosine (y) a texel stands for. The top row sits
+// a metre below the top: on the top sphere itself, a ray going down would meet it at distance 0
+// and read that as where it leaves.
+vec2 multipleScatteringAltitudeMuS(IN(AtmosphereParams) a, real u, real v) {
+  real top = real(a.radii.y);
+  real size = real(kMultiScatteringSize);
+  real h = min(clamp(texelToUnit(v, size), real(0.0f), real(1.0f)) * top, top - real(1.0f));
+  real muS = real(2.0f) * clamp(texelToUnit(u, size), real(0.0f), real(1.0f)) - real(1.0f);
+  return vec2(h, muS);
+}
+
+// (1 − e^(−x)) / x, the mean transmittance across a step of optical depth x through a uniform
+// medium: the step's exact weight (Hillaire 2020, §5.1), which stays right for the long steps
+// of rays toward the horizon; without the cancellation of small x.
+real stepTransmittanceMean(real x) {
+  return x < real(1.0e-3f) ? real(1.0f) - real(0.5f) * x : (real(1.0f) - exp(-x)) / x;
+}
+
+// Ψ_ms (radiance per steradian per unit sun irradiance) and f_ms at altitude h for a sun at zenith
+// cosine muS: kMultiScatteringDirections² directions in equal-area cells (midpoints in the zenith
+// cosine and the azimuth about the zenith, each cell 4π / n² of the sphere), each ray marched to
+// the top or the ground in kMultiScatteringSteps equal steps.
+void multipleScatteringTexel(IN(AtmosphereParams) a, real h, real muS, OUT(vec3) psi, OUT(vec3) transfer) {
+  real R = real(a.radii.x);
+  real r = R + h;
+  real sinS = sqrt(max(real(1.0f) - muS * muS, real(0.0f)));
+  real isotropic = real(1.0f) / (real(4.0f) * kAtmospherePi);
+  real groundBrdf = real(kMultiScatteringGroundAlbedo) / kAtmospherePi;
+  uint n = kMultiScatteringDirections;
+  vec3 secondOrder = vec3(real(0.0f), real(0.0f), real(0.0f));
+  vec3 returned = vec3(real(0.0f), real(0.0f), real(0.0f));
+  for (uint i = 0u; i < n; ++i) {
+    real mu = real(1.0f) - real(2.0f) * (real(i) + real(0.5f)) / real(n);
+    real sinV = sqrt(max(real(1.0f) - mu * mu, real(0.0f)));
+    bool ground = rayHitsGround(R, h, mu);
+    real tMax = ground ? raySphere(R, h, mu, real(0.0f)).x : distanceToTop(a, h, mu);
+    real dt = tMax / real(kMultiScatteringSteps);
+    for (uint j = 0u; j < n; ++j) {
+      real phi = real(2.0f) * kAtmospherePi * (real(j) + real(0.5f)) / real(n);
+      real nu = mu * muS + sinV * sinS * cos(phi);
+      vec3 depth = vec3(real(0.0f), real(0.0f), real(0.0f));
+      vec3 light = vec3(real(0.0f), real(0.0f), real(0.0f));
+      vec3 fraction = vec3(real(0.0f), real(0.0f), real(0.0f));
+      for (uint k = 0u; k < kMultiScatteringSteps; ++k) {
+        real t = (real(k) + real(0.5f)) * dt;
+        real ht = altitudeAlong(R, h, mu, t);
+        real muSt = clamp((r * muS + t * nu) / (R + ht), real(-1.0f), real(1.0f));
+        vec3 stepDepth = extinctionAt(a, ht) * dt;
+        // Transmittance from the point to the step's start, times the step's mean transmittance.
+        vec3 weight = vec3(exp(-depth.x) * stepTransmittanceMean(stepDepth.x),
+                           exp(-depth.y) * stepTransmittanceMean(stepDepth.y),
+                           exp(-depth.z) * stepTransmittanceMean(stepDepth.z)) * dt;
+        vec3 scattered = (rayleighScatteringAt(a, ht) + mieScatteringAt(a, ht)) * weight;
+        fraction = fraction + scattered;
+        light = light + scattered * SUN_TRANSMITTANCE(a, ht, muSt) * isotropic;
+        depth = depth + stepDepth;
+      }
+      if (ground) {
+        // The ground where the ray ends, lit by the sun through the air, seen through the ray.
+        real muSGround = clamp((r * muS + tMax * nu) / R, real(-1.0f), real(1.0f));
+        vec3 viewT = vec3(exp(-depth.x), exp(-depth.y), exp(-depth.z));
+        light = light + viewT * SUN_TRANSMITTANCE(a, real(0.0f), muSGround) * (groundBrdf * max(muSGround, real(0.0f)));
+      }
+      secondOrder = secondOrder + light;
+      returned = returned + fraction;
+    }
+  }
+  // Each direction weighs P_u · 4π / n² = 1 / n².
+  real cell = real(1.0f) / real(n * n);
+  transfer = returned * cell;
+  vec3 series = vec3(real(1.0f) / (real(1.0f) - transfer.x), real(1.0f) / (real(1.0f) - transfer.y),
+                     real(1.0f) / (real(1.0f) - transfer.z));
+  psi = secondOrder * cell * series;
+}
+
+#ifdef MULTIPLE_SCATTERING
+// Light scattered two or more times toward the start of a ray segment, per the params' sun
+// irradiance, over the same samples as singleScattering (altitude h, zenith cosine mu, sun zenith
+// cosine muS, view-sun cosine nu, length tMax, `steps` midpoint steps): σ_s · Ψ_ms at each sample,
+// with Ψ_ms from the includer's MULTIPLE_SCATTERING(a, h, muS) (GLSL: the table; C++: the CPU
+// table), seen through the air before it.
+vec3 multipleScattering(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real tMax, uint steps) {
+  real R = real(a.radii.x);
+  real r = R + h;
+  real dt = tMax / real(steps);
+  vec3 sum = vec3(real(0.0f), real(0.0f), real(0.0f));
+  vec3 depth = vec3(real(0.0f), real(0.0f), real(0.0f));
+  for (uint i = 0u; i < steps; ++i) {
+    real t = (real(i) + real(0.5f)) * dt;
+    real ht = altitudeAlong(R, h, mu, t);
+    real muSt = clamp((r * muS + t * nu) / (R + ht), real(-1.0f), real(1.0f));
+    vec3 extinction = extinctionAt(a, ht);
+    vec3 toSample = depth + extinction * (real(0.5f) * dt);
+    vec3 viewT = vec3(exp(-toSample.x), exp(-toSample.y), exp(-toSample.z));
+    sum = sum + viewT * (rayleighScatteringAt(a, ht) + mieScatteringAt(a, ht)) * MULTIPLE_SCATTERING(a, ht, muSt);
+    depth = depth + extinction * dt;
+  }
+  return sum * (dt * real(a.ozoneSun.y));
+}
+#endif
 
 #endif

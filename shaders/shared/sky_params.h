@@ -60,3 +60,21 @@ GPU_ASSERT_SIZE(SkyUniforms, 624)
 GPU_NAMESPACE_END
 
 #endif
+// Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
+// the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
+// unit sun irradiance, the isotropic phase included), a = the transfer f_ms of the green channel.
+GPU_CONST uint kMultiScatteringSize = 32u;        // texels along each axis
+GPU_CONST uint kMultiScatteringDirections = 8u;   // 8 × 8 directions over the sphere per texel
+GPU_CONST uint kMultiScatteringSteps = 32u;       // steps along each direction's ray
+GPU_CONST float kMultiScatteringGroundAlbedo = 0.3f;  // Lambertian ground under the air (second order only)
+
+// One ray of `planet sky` on the GPU (shaders/sky_ray.comp): the sun's transmittance and Ψ_ms
+// from the tables; the per-pixel march of sky.comp and the tables' march, side by side.
+GPU_CONST uint kSkyRayWorkgroupSize = 64u;
+struct SkyRayPush {
+  AtmosphereParams atmosphere;
+  vec4 counts;  // x: rays, y: steps of the reference march (sky.comp's samples), z: steps of the tables' march, w: 0
+               // (whole numbers as floats)
+};
+GPU_ASSERT_SIZE(SkyRayPush, 112)
+
