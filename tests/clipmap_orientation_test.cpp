@@ -105,9 +105,7 @@ void expectValidBasis(const ClipmapFrame& frame, const glm::dvec3& cameraDirecti
   EXPECT_LT(glm::length(m[2] - cameraDirection), 1e-12) << what;
 }
 
-std::string describe(const glm::dvec3& v) {
-  return fmt::format("({}, {}, {})", v.x, v.y, v.z);
-}
+std::string describe(const glm::dvec3& v) { return fmt::format("({}, {}, {})", v.x, v.y, v.z); }
 
 // Distance between two angles on the circle, in [0, π].
 double circularDistance(double a, double b) {
@@ -123,30 +121,25 @@ double ringThetaFormula(uint32_t ringsPerLevel, uint32_t ring) {
 // ---------------------------------------------------------------------------------------------
 // Basis
 
-TEST(ClipmapOrientation, ReferenceBasisIsOrthonormalAndPointsAtCameraForEveryDirection) {
+TEST(ClipmapOrientation, BasisIsOrthonormalAndPointsAtCameraForEveryDirection) {
   for (const glm::dvec3& dir : testDirections()) {
     for (double distance : {1.0, kEarthRadiusM + 1.7, kEarthRadiusM + 4e7}) {
       ClipmapFrame frame = orientClipmap(dir * distance, kEarthRadiusM);
-      EXPECT_FALSE(frame.transported);
       expectValidBasis(frame, dir, "direction " + describe(dir) + " distance " + std::to_string(distance));
     }
   }
 }
 
-TEST(ClipmapOrientation, TransportedBasisIsOrthonormalAndPointsAtCameraForEveryDirection) {
-  // Previous frames near the new direction (the usual case) and from the other side of the planet
-  // (a teleport), so both transport branches meet every direction, the world poles included.
-  std::vector<glm::dvec3> dirs = testDirections();
-  for (size_t i = 0; i < dirs.size(); ++i) {
-    const glm::dvec3& dir = dirs[i];
-    std::vector<glm::dvec3> previousDirections = {dirs[(i + 1) % dirs.size()], dirs[(i + 7) % dirs.size()], -dir, dir,
-                                                  tiltedAway(dir, 1e-3, 0),    tiltedAway(dir, 1e-3, 2)};
-    for (const glm::dvec3& prevDir : previousDirections) {
-      ClipmapFrame previous = orientClipmap(prevDir * 7e6, kEarthRadiusM);
-      ClipmapFrame frame = orientClipmap(dir * 7e6, kEarthRadiusM, &previous);
-      EXPECT_TRUE(frame.transported);
-      expectValidBasis(frame, dir, "direction " + describe(dir) + " from " + describe(prevDir));
-    }
+// The spin is chosen from the pose alone: local x is the local north (the planet's +z projected
+// into the tangent plane), so it lies in the plane of +z and the pole, on the side of +z.
+TEST(ClipmapOrientation, LocalXPointsNorthEverywhereButAtTheWorldPoles) {
+  const glm::dvec3 north(0.0, 0.0, 1.0);
+  for (const glm::dvec3& dir : testDirections()) {
+    if (std::hypot(dir.x, dir.y) == 0.0) continue;  // the world poles: see CameraAtWorldPole...
+    ClipmapFrame frame = orientClipmap(dir * (kEarthRadiusM + 10.0), kEarthRadiusM);
+    const glm::dvec3 x = frame.localToPlanet[0];
+    EXPECT_GT(x.z, 0.0) << describe(dir);
+    EXPECT_LT(std::abs(glm::dot(x, glm::normalize(glm::cross(north, dir)))), 1e-12) << describe(dir);
   }
 }
 
@@ -177,75 +170,73 @@ TEST(ClipmapOrientation, FrameRecordsAltitudeAndDistance) {
   EXPECT_NEAR(below.altitudeM, -400.0, 1e-9);
 }
 
-// The camera walks a full great circle through a world pole in 0.01° steps, each frame transported
-// from the last: every axis moves by at most the step's chord (≤ the step angle), so nothing flips
-// or spins, including at the exact pole samples (t = 0 and t = 180° land on ±pole).
-TEST(ClipmapOrientation, TransportedBasisTurnsNoMoreThanTheCameraThroughWorldPoles) {
+// Chord between two unit axes modulo a half turn: min(|a − b|, |a + b|). A half turn about the
+// pole maps an even-N mesh onto itself (vertex i onto i + N/2), so a spin change of π is no change.
+double chordModuloHalfTurn(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::min(glm::length(a - b), glm::length(a + b));
+}
+
+// The camera walks full great circles in 0.01° steps, through a world pole or 1e−9 rad past it.
+// Away from the poles the axes turn smoothly, by at most the step times (1 + 1/sin colatitude)
+// (parallel transport plus the turn of the north direction about the pole). Through a pole the
+// north frame turns by exactly π, a symmetry of an even-N mesh: modulo that, consecutive frames
+// differ by no more than the bound (on a meridian, by just the step), so nothing pops there.
+TEST(ClipmapOrientation, BasisTurnsSmoothlyAndThroughWorldPolesOnlyByASymmetry) {
   const double step = 0.01 * kPi / 180.0;
   const int steps = 36000;
   struct Circle {
     glm::dvec3 pole, across;  // the circle is cos t·pole + sin t·across
+    bool meridian;            // through the planet's axis
   };
   const std::vector<Circle> circles = {
-      {{0, 0, 1}, {1, 0, 0}},
-      {{0, 0, 1}, {0, 1, 0}},
-      {{0, 0, 1}, glm::normalize(glm::dvec3(1, 1, 0))},
-      {{0, 0, -1}, glm::normalize(glm::dvec3(-3, 1, 0))},
-      {{1, 0, 0}, {0, 0, 1}},
-      {{0, 1, 0}, {1, 0, 0}},
-      // Through the pole but 1e−9 rad off it: passes the pole at a grazing distance.
-      {glm::normalize(glm::dvec3(1e-9, 0, 1)), glm::normalize(glm::dvec3(0, 1, 0))},
+      {{0, 0, 1}, {1, 0, 0}, true},
+      {{0, 0, 1}, {0, 1, 0}, true},
+      {{0, 0, 1}, glm::normalize(glm::dvec3(1, 1, 0)), true},
+      {{0, 0, -1}, glm::normalize(glm::dvec3(-3, 1, 0)), true},
+      {{1, 0, 0}, {0, 1, 0}, false},  // the equator
+      {{0, 1, 0}, glm::normalize(glm::dvec3(1, 0, 1)), false},
+      // 1e−9 rad off the pole: passes it at a grazing distance.
+      {glm::normalize(glm::dvec3(1e-9, 0, 1)), glm::normalize(glm::dvec3(0, 1, 0)), false},
   };
   for (const Circle& circle : circles) {
     ClipmapFrame previous = orientClipmap(circle.pole * (kEarthRadiusM + 500.0), kEarthRadiusM);
-    double worstRatio = 0.0;
+    double worstMeridianRatio = 0.0;
     for (int i = 1; i <= steps; ++i) {
-      double t = i * step;
-      glm::dvec3 dir = std::cos(t) * circle.pole + std::sin(t) * circle.across;
-      ClipmapFrame frame = orientClipmap(dir * (kEarthRadiusM + 500.0), kEarthRadiusM, &previous);
-      ASSERT_TRUE(frame.transported);
-      for (int axis = 0; axis < 3; ++axis) {
-        double change = glm::length(frame.localToPlanet[axis] - previous.localToPlanet[axis]);
-        worstRatio = std::max(worstRatio, change / step);
-        ASSERT_LT(change, 2.0 * step) << "axis " << axis << " at step " << i << " on the circle through "
-                                      << describe(circle.pole);
-      }
+      const double t = i * step;
+      const glm::dvec3 dir = std::cos(t) * circle.pole + std::sin(t) * circle.across;
+      ClipmapFrame frame = orientClipmap(dir * (kEarthRadiusM + 500.0), kEarthRadiusM);
       ASSERT_LT(orthonormalityError(frame.localToPlanet), 1e-12) << "step " << i;
+      const double sinColatitude =
+          std::min(std::hypot(dir.x, dir.y), std::hypot(previous.localToPlanet[2].x, previous.localToPlanet[2].y));
+      // A sample exactly on a pole (world +x there) is not compared.
+      for (int axis = 0; axis < 2 && sinColatitude > 0.0; ++axis) {
+        const double bound = 1.01 * step * (1.0 + 1.0 / sinColatitude) + 1e-12;
+        const double change = chordModuloHalfTurn(frame.localToPlanet[axis], previous.localToPlanet[axis]);
+        ASSERT_LE(change, bound) << "axis " << axis << " at step " << i << " on the circle through "
+                                 << describe(circle.pole);
+        if (circle.meridian) worstMeridianRatio = std::max(worstMeridianRatio, change / step);
+      }
       previous = frame;
     }
-    // Parallel transport turns the tangent axes by exactly the step (chord ≈ step), no less.
-    EXPECT_NEAR(worstRatio, 1.0, 1e-3) << describe(circle.pole);
+    // North along a meridian is its own parallel transport: the axes turn by just the step.
+    if (circle.meridian) EXPECT_NEAR(worstMeridianRatio, 1.0, 1e-3) << describe(circle.across);
   }
 }
 
-TEST(ClipmapOrientation, StationaryCameraKeepsItsBasis) {
-  glm::dvec3 camera = glm::normalize(glm::dvec3(0.3, -0.2, 0.9)) * (kEarthRadiusM + 50.0);
-  ClipmapFrame first = orientClipmap(camera, kEarthRadiusM);
-  ClipmapFrame frame = first;
-  for (int i = 0; i < 10000; ++i) frame = orientClipmap(camera, kEarthRadiusM, &frame);
-  for (int axis = 0; axis < 3; ++axis)
-    EXPECT_LT(glm::length(frame.localToPlanet[axis] - first.localToPlanet[axis]), 1e-15) << axis;
-}
-
-// A loop of small camera steps that returns to its start: transport brings the pole back exactly
-// and turns the tangent axes about it by the enclosed solid angle (holonomy), never anything else.
-TEST(ClipmapOrientation, ClosedLoopReturnsTurnedOnlyAboutThePole) {
-  // A circle of latitude at colatitude 45° around +z, stepped in 0.01° of longitude; the solid
-  // angle enclosed by it is 2π(1 − cos 45°) ≈ 1.840 rad.
+// Issue 20, point 8: the frame depends on the pose only, so a loop that returns to its start
+// gives back the start's frame bit for bit (parallel transport came back turned by the loop's
+// solid angle, and the picture after a flight differed from a fresh render).
+TEST(ClipmapOrientation, ClosedLoopReturnsTheSameBasisBitForBit) {
   const double colatitude = kPi / 4.0;
-  const int steps = 36000;
+  const int steps = 3600;
   auto dirAt = [&](int i) {
-    double lon = 2.0 * kPi * i / steps;
+    double lon = 2.0 * kPi * (i % steps) / steps;
     return glm::dvec3(std::sin(colatitude) * std::cos(lon), std::sin(colatitude) * std::sin(lon), std::cos(colatitude));
   };
   ClipmapFrame start = orientClipmap(dirAt(0) * 7e6, kEarthRadiusM);
   ClipmapFrame frame = start;
-  for (int i = 1; i <= steps; ++i) frame = orientClipmap(dirAt(i) * 7e6, kEarthRadiusM, &frame);
-  EXPECT_LT(glm::length(frame.localToPlanet[2] - start.localToPlanet[2]), 1e-12);
-  EXPECT_LT(orthonormalityError(frame.localToPlanet), 1e-12);
-  double turn = std::atan2(glm::dot(frame.localToPlanet[0], start.localToPlanet[1]),
-                           glm::dot(frame.localToPlanet[0], start.localToPlanet[0]));
-  EXPECT_NEAR(std::abs(turn), 2.0 * kPi * (1.0 - std::cos(colatitude)), 1e-6) << "turn " << turn;
+  for (int i = 1; i <= steps; ++i) frame = orientClipmap(dirAt(i) * 7e6, kEarthRadiusM);
+  EXPECT_EQ(std::memcmp(&frame.localToPlanet, &start.localToPlanet, sizeof(glm::dmat3)), 0);
 }
 
 TEST(ClipmapOrientation, SameInputsGiveBitIdenticalBases) {
@@ -254,33 +245,7 @@ TEST(ClipmapOrientation, SameInputsGiveBitIdenticalBases) {
     ClipmapFrame a = orientClipmap(camera, kEarthRadiusM);
     ClipmapFrame b = orientClipmap(camera, kEarthRadiusM);
     ASSERT_EQ(std::memcmp(&a.localToPlanet, &b.localToPlanet, sizeof(glm::dmat3)), 0) << describe(dir);
-    glm::dvec3 next = tiltedAway(dir, 1e-4, 1) * (kEarthRadiusM + 321.0);
-    ClipmapFrame c = orientClipmap(next, kEarthRadiusM, &a);
-    ClipmapFrame d = orientClipmap(next, kEarthRadiusM, &b);
-    ASSERT_EQ(std::memcmp(&c.localToPlanet, &d.localToPlanet, sizeof(glm::dmat3)), 0) << describe(dir);
   }
-}
-
-// A previous frame that is slightly off (say, from a float round trip) must not carry its error
-// over: the transported basis is orthonormal again to 1e−12.
-TEST(ClipmapOrientation, SlightlyNonOrthonormalPreviousIsRepaired) {
-  ClipmapFrame previous = orientClipmap(glm::dvec3(2e6, -3e6, 5e6), kEarthRadiusM);
-  previous.localToPlanet[0] = glm::normalize(previous.localToPlanet[0] + 1e-5 * previous.localToPlanet[2]);
-  previous.localToPlanet[1] *= 1.0 + 1e-6;
-  glm::dvec3 dir = glm::normalize(glm::dvec3(2e6, -3e6, 5.001e6));
-  ClipmapFrame frame = orientClipmap(dir * 6.5e6, kEarthRadiusM, &previous);
-  EXPECT_TRUE(frame.transported);
-  expectValidBasis(frame, dir, "repaired");
-}
-
-TEST(ClipmapOrientation, BrokenPreviousFrameFallsBackToTheReference) {
-  glm::dvec3 camera(1e6, 2e6, 6e6);
-  ClipmapFrame broken;
-  broken.localToPlanet[0] = glm::dvec3(kNan);
-  ClipmapFrame frame = orientClipmap(camera, kEarthRadiusM, &broken);
-  EXPECT_FALSE(frame.transported);
-  ClipmapFrame reference = orientClipmap(camera, kEarthRadiusM);
-  EXPECT_EQ(std::memcmp(&frame.localToPlanet, &reference.localToPlanet, sizeof(glm::dmat3)), 0);
 }
 
 TEST(ClipmapOrientation, RejectsBadRadiusAndCamera) {
@@ -330,8 +295,9 @@ TEST(ClipmapOrientation, DirectionAndThetaPhiRoundTrip) {
     // θ stays accurate right at the pole (atan2, not acos).
     glm::dvec2 nearPole = planetToLocalThetaPhi(frame, localToPlanetDirection(frame, 1e-10, 0.5));
     EXPECT_NEAR(nearPole.x, 1e-10, 1e-15);
+    // The pole itself: x·n and y·n of the rounded basis are ~1e−17, not always 0.
     glm::dvec2 pole = planetToLocalThetaPhi(frame, frame.localToPlanet[2]);
-    EXPECT_EQ(pole.x, 0.0);
+    EXPECT_LT(pole.x, 1e-15);
   }
 }
 

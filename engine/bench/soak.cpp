@@ -288,9 +288,8 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
   SoakFrameState state = soakFrameState(0);
   PlanetDescription drawn = framePlanet(planet, state, options.quality);
   std::unique_ptr<Renderer> renderer = build(state);
-  std::vector<CameraPose> poses;  // of every frame the current Renderer drew, in order
+  CameraPose lastPose{};  // of the last frame drawn
   // The report's own storage, taken before the first sample, so that it does not count as growth.
-  poses.reserve(std::min(options.frames, kSoakRebuildFrames));
   report.frameMs.reserve(options.frames - options.warmup);
   report.gpuMs.reserve(options.frames - options.warmup);
   report.samples.reserve(options.frames / kSoakSampleFrames + 3);
@@ -316,7 +315,6 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
         renderer.reset();  // its memory goes back before the new one takes its own
         renderer = build(state);
         drawn = framePlanet(planet, state, options.quality);
-        poses.clear();
         report.rebuildMs.push_back(millisecondsSince(rebuildStart));
       }
       const Clock::time_point frameStart = Clock::now();
@@ -324,7 +322,7 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
       const uint32_t slot = k % Renderer::kFramesInFlight;
       finish(slot);
       const CameraPose pose = cameraPoseAt(sampleCameraPath(path, state.pathTimeS), drawn);
-      poses.push_back(pose);
+      lastPose = pose;
       const glm::dvec3 sun = sunDirection(state.sun, renderer->clampToGround(pose));
       renderer->prepare(pose, sun, state.timeS, slot);
       renderer->record(ring.begin(slot), slot);
@@ -370,19 +368,16 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
   report.rssGrowthKiB = int64_t(std::llround(lastQuarter - firstQuarter));
   report.rssFlat = !kSoakChecksRss || report.rssGrowthKiB <= kSoakRssToleranceKiB;
 
-  // The last frame against a fresh Renderer built and set up the same way. The one thing a
-  // Renderer carries from frame to frame by design is the clipmap's orientation, transported
-  // along the camera's positions (clipmap_orientation.h; the mesh's spin about its pole shows in
-  // the picture): the fresh one is given the same positions on the CPU (prepare() alone), then
-  // draws the last frame with nothing computed before it on the GPU.
+  // The last frame against a fresh Renderer built and set up the same way, which draws it with
+  // nothing computed before it, on the CPU or the GPU: nothing may be left over from the soak.
+  // (The clipmap's spin comes from the pose alone, clipmap_orientation.h, so no earlier
+  // positions need replaying.)
   const std::vector<uint8_t> soaked = vk::readbackImage(context, renderer->output());
   renderer.reset();
   report.liveAllocationsWithoutRenderer = context.allocator.stats().liveAllocations;
   renderer = build(state);
   applyLiveState(*renderer, state, options.quality);
-  const glm::dvec3 anySun(0.0, 0.0, 1.0);  // the orientation does not depend on the sun
-  for (size_t i = 0; i + 1 < poses.size(); ++i) renderer->prepare(poses[i], anySun, 0.0, 0);
-  const std::vector<uint8_t> fresh = renderer->render(poses.back(), state.sun, state.timeS).image.pixels;
+  const std::vector<uint8_t> fresh = renderer->render(lastPose, state.sun, state.timeS).image.pixels;
   renderer.reset();
   report.finalIdentical = soaked == fresh;
   if (soaked.size() == fresh.size())

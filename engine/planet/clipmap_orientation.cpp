@@ -80,30 +80,25 @@ double tangentAngle(double radiusM, double heightM) {
   return std::atan2(std::sqrt(heightM * (2.0 * radiusM + heightM)), radiusM);
 }
 
-// The fixed start basis: local x from the world axis along which the pole has its smallest
-// |component| (ties to the lower index, so the choice is deterministic). |n_i| ≤ 1/√3, so
-// e − (e·n)n has length ≥ √(2/3) and the normalisation is always well conditioned.
-glm::dmat3 referenceBasis(const glm::dvec3& pole) {
-  glm::dvec3 a = glm::abs(pole);
-  int axis = 0;
-  if (a.y < a[axis]) axis = 1;
-  if (a.z < a[axis]) axis = 2;
-  glm::dvec3 reference(0.0);
-  reference[axis] = 1.0;
-  glm::dvec3 x = glm::normalize(reference - pole[axis] * pole);
+// Local x toward the planet's north pole (+z), projected into the tangent plane of unit pole n:
+// z − n_z n, with 1 − n_z² written as n_x² + n_y² (no cancellation near a world pole) and n_x, n_y
+// scaled by the larger of the two first (no underflow however close to the pole). Only the
+// poles themselves (n_x = n_y = 0) fall back to world +x.
+glm::dmat3 northBasis(const glm::dvec3& pole) {
+  const double scale = std::max(std::abs(pole.x), std::abs(pole.y));
+  glm::dvec3 x(1.0, 0.0, 0.0);
+  if (scale > 0.0) {
+    const double u = pole.x / scale, v = pole.y / scale;
+    x = glm::normalize(glm::dvec3(-pole.z * u, -pole.z * v, scale * (u * u + v * v)));
+  }
+  // Against the exact pole once more, so that rounding leaves x·n at ~1e−16 at most.
+  x = glm::normalize(x - glm::dot(x, pole) * pole);
   return glm::dmat3(x, glm::cross(pole, x), pole);
-}
-
-// Rodrigues' rotation by the minimal rotation taking unit p onto unit n, in the form
-// v·c + k × v + k·(k·v)/(1 + c) with k = p × n, c = p·n (no trigonometry, exact for p = n).
-// Requires c ≥ 0, so 1 + c ≥ 1 never amplifies rounding.
-glm::dvec3 rotateMinimal(const glm::dvec3& k, double c, const glm::dvec3& v) {
-  return c * v + glm::cross(k, v) + (glm::dot(k, v) / (1.0 + c)) * k;
 }
 
 }  // namespace
 
-ClipmapFrame orientClipmap(const glm::dvec3& cameraPositionPlanetFrame, double radiusM, const ClipmapFrame* previous) {
+ClipmapFrame orientClipmap(const glm::dvec3& cameraPositionPlanetFrame, double radiusM) {
   requireRadius(radiusM, "orientClipmap");
   if (!isFinite(cameraPositionPlanetFrame))
     throw Error(fmt::format("orientClipmap: camera position ({}, {}, {}) is not finite", cameraPositionPlanetFrame.x,
@@ -114,38 +109,11 @@ ClipmapFrame orientClipmap(const glm::dvec3& cameraPositionPlanetFrame, double r
   const glm::dvec3 pole = cameraPositionPlanetFrame / distance;
 
   ClipmapFrame frame;
+  frame.localToPlanet = northBasis(pole);
   frame.cameraPlanetFrame = cameraPositionPlanetFrame;
   frame.radiusM = radiusM;
   frame.cameraDistanceM = distance;
   frame.altitudeM = distance - radiusM;
-
-  bool transported = false;
-  if (previous) {
-    // Parallel transport of the previous tangent frame along the great circle from its pole to the
-    // new one: the basis turns no more than the camera direction does.
-    glm::dvec3 oldX = previous->localToPlanet[0];
-    glm::dvec3 oldPole = previous->localToPlanet[2];
-    if (glm::dot(oldPole, pole) < 0.0) {
-      // More than 90° in one frame: first turn by π about old local x (x stays, y and the pole
-      // flip), so the remaining rotation is under 90° and 1 + c stays ≥ 1.
-      oldPole = -oldPole;
-    }
-    glm::dvec3 k = glm::cross(oldPole, pole);
-    double c = glm::dot(oldPole, pole);
-    glm::dvec3 x = rotateMinimal(k, c, oldX);
-    // Gram–Schmidt against the exact new pole, so neither rounding nor a slightly non-orthonormal
-    // previous frame accumulates over many frames.
-    x -= glm::dot(x, pole) * pole;
-    double length = glm::length(x);
-    // NaN-safe: a previous frame holding NaN or a degenerate x falls through to the reference.
-    if (length >= 0.5 && std::isfinite(length)) {
-      x /= length;
-      frame.localToPlanet = glm::dmat3(x, glm::cross(pole, x), pole);
-      transported = true;
-    }
-  }
-  if (!transported) frame.localToPlanet = referenceBasis(pole);
-  frame.transported = transported;
   return frame;
 }
 

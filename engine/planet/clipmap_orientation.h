@@ -39,31 +39,38 @@ struct ClipmapFrame {
   double radiusM = 1.0;                         // sea-level radius r the frame was built for
   double cameraDistanceM = 1.0;                 // |cameraPlanetFrame| = r + h
   double altitudeM = 0.0;                       // h = distance − r above sea level; negative below it
-  bool transported = false;  // true: tangent axes carried over from the previous frame; false: fixed reference
 
   glm::dvec3 nadirDirection() const { return localToPlanet[2]; }  // planet centre → camera, unit
 };
 
-// Builds this frame's basis. Column 2 is normalize(cameraPositionPlanetFrame). The tangent axes
-// (columns 0 and 1) are free: the renderer anchors textures to the planet, so the mesh's spin
-// about its pole does not show, and only stability and determinism matter:
-// - previous given (and finite): its axes are parallel-transported, i.e. rotated by the minimal
-//   rotation that takes its pole onto the new one (axis p × n, angle ∠(p, n)), then
-//   re-orthonormalised (Gram–Schmidt against the new pole) so rounding never accumulates. A camera
-//   step of angle α turns every axis by at most α: no flip or spin anywhere, poles included. Over
-//   a closed camera loop the frame comes back turned about its pole by the enclosed solid angle
-//   (holonomy); harmless for the same reason. A jump of more than 90° in one frame (a teleport)
-//   is first turned by π about previous local x, so the transport never divides by ~0.
-// - no previous (first frame, or a previous frame holding NaN): local x is the world axis along
-//   which the pole has its smallest |component| (ties: x before y before z), made orthogonal to
-//   the pole. That axis is never within 54.7° of the pole, so the result is well conditioned for
-//   every direction, but it jumps where the smallest component changes: use it only to start.
-// Unlike Hayes-McCoy's yaw–pitch basis from a fixed up vector (§4.5), neither path degenerates
-// above a world pole. Same inputs (bit for bit) give the same basis bit for bit.
-// Throws planet::Error for a radius that is not finite and > 0, and for a camera position that is
-// not finite or is the planet centre.
-ClipmapFrame orientClipmap(const glm::dvec3& cameraPositionPlanetFrame, double radiusM,
-                           const ClipmapFrame* previous = nullptr);
+// Builds this frame's basis from the camera position alone, so that the same pose draws the
+// same picture however the camera got there (issue 20, point 8). Column 2 is
+// normalize(cameraPositionPlanetFrame); the tangent axes (the mesh's spin about its pole) are
+// free, and their choice shows in the picture only through where the vertices sample the
+// terrain (at quality low, with no patch textures, through the vertex normals too).
+//
+// Choice: local x points north, along the planet's axis (+z) projected into the tangent plane,
+// (−n_z n_x, −n_z n_y, n_x² + n_y²)/|…| for pole n (1 − n_z² written as n_x² + n_y², so it stays
+// exact near a world pole); local y = n × x points west. Everywhere but at the two world poles
+// this is smooth: a camera step of angle α away from them turns the axes by about α/sin(colatitude).
+// Why not a switch between two reference axes (or the old parallel transport):
+// - No tangent field on the sphere is continuous everywhere (hairy ball theorem), and the mesh's
+//   N-fold symmetry only weakens that to "continuous modulo 2π/N" (the field's singularities,
+//   of index a multiple of 1/N, still add up to 2). Any blend or switch between axes therefore
+//   just moves the singular points; a switch at a curve would add a seam where the spin jumps
+//   by a non-symmetry angle, visible along the whole curve.
+// - With north as reference the only singular points are the poles, and there a straight pass
+//   turns the frame by exactly π, which for even N (every quality preset) is a symmetry of the
+//   mesh (vertex i goes to i + N/2, triangles onto triangles): nothing pops. Only a camera whose
+//   nadir passes within a few steps of the exact pole sees the spin turn fast for a few frames
+//   (by at most π/N, half a vertex spacing, modulo the symmetry), like an odd N at any pass.
+// - Parallel transport was smooth everywhere but path dependent: after a loop the mesh came
+//   back turned by the enclosed solid angle, and the picture differed from a fresh render.
+// At a world pole itself (n_x = n_y = 0) local x is world +x, the limit of approaching along
+// longitude 180° (and, modulo the even-N symmetry, 0°). Same inputs (bit for bit) give the same
+// basis bit for bit. Throws planet::Error for a radius that is not finite and > 0, and for a
+// camera position that is not finite or is the planet centre.
+ClipmapFrame orientClipmap(const glm::dvec3& cameraPositionPlanetFrame, double radiusM);
 
 // The planet-frame unit direction of local (θ, φ): localToPlanet · (cos φ sin θ, sin φ sin θ, cos θ).
 glm::dvec3 localToPlanetDirection(const ClipmapFrame& frame, double theta, double phi);

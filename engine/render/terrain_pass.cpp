@@ -264,16 +264,9 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   const double radius = planet_.radiusM;
   buildForToggles();
   TerrainFrameInfo info;
-  // This camera's orientation, transported from the previous frame's (also while the LOD is
-  // frozen, so that unfreezing continues from it). A camera that did not move keeps its frame
-  // bit for bit (a transport by angle 0 would still round), so nothing downstream is recomputed.
-  if (previousOrientation_ && previousOrientation_->cameraPlanetFrame == view.camera.position &&
-      previousOrientation_->radiusM == radius)
-    info.viewOrientation = *previousOrientation_;
-  else
-    info.viewOrientation =
-        orientClipmap(view.camera.position, radius, previousOrientation_ ? &*previousOrientation_ : nullptr);
-  previousOrientation_ = info.viewOrientation;
+  // This camera's orientation, from its position alone (clipmap_orientation.h): the same pose
+  // gets the same frame bit for bit however the camera got there.
+  info.viewOrientation = orientClipmap(view.camera.position, radius);
 
   // The ground below the camera (for the pixel cut and the near plane).
   info.groundHeightM = terrainHeightM(planet_, info.viewOrientation.nadirDirection());

@@ -126,7 +126,7 @@ class TerrainPass {
   TerrainPass(const TerrainPass&) = delete;
   TerrainPass& operator=(const TerrainPass&) = delete;
 
-  // CPU half of a frame: orientation (transported from the previous frame), ring cut, octave
+  // CPU half of a frame: orientation (from the camera position), ring cut, octave
   // tables, patch layout, uniforms. Returns what it decided. The octave tables and uniforms go
   // into frame slot `slot`'s host-visible buffers (< vk::kFramesInFlight): call it while no
   // frame recorded for that slot is executing; a frame of the other slot may be. It builds on
@@ -259,7 +259,6 @@ class TerrainPass {
   bool freezeLod_ = false;
   std::optional<Lod> lod_;  // the last prepared frame's
   OctaveTables tables_;     // lod_'s
-  std::optional<ClipmapFrame> previousOrientation_;
   gpu::FrameUniforms uniformData_{};
   // What the last computed heights were computed for: skip the compute when it is unchanged.
   struct ComputeKey {
