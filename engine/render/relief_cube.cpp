@@ -1,6 +1,7 @@
 #include "render/relief_cube.h"
 
 #include <algorithm>
+#include <bit>
 #include <span>
 
 #include <fmt/format.h>
@@ -25,33 +26,6 @@ constexpr VkDescriptorType kBindings[gpu::kReliefBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // permutations
 };
 
-// One layout change of mip levels [first, first + count) of every face.
-void levelBarrier(VkCommandBuffer cmd, VkImage image, uint32_t first, uint32_t count, VkImageLayout from,
-                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = srcStage;
-  barrier.srcAccessMask = srcAccess;
-  barrier.dstStageMask = dstStage;
-  barrier.dstAccessMask = dstAccess;
-  barrier.oldLayout = from;
-  barrier.newLayout = to;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, first, count, 0, 6};
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.imageMemoryBarrierCount = 1;
-  dep.pImageMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dep);
-}
-
-uint32_t mipCount(uint32_t size) {
-  uint32_t levels = 1;
-  while ((size >> levels) > 0) ++levels;
-  return levels;
-}
-
 }  // namespace
 
 ReliefCube::ReliefCube(vk::Context& context, const PlanetGpuData& data, uint32_t size) {
@@ -69,7 +43,7 @@ ReliefCube::ReliefCube(vk::Context& context, const PlanetGpuData& data, uint32_t
     throw Error(fmt::format("device '{}' cannot store, filter and blit R16G16B16A16_SFLOAT images (optimal tiling)",
                             context.info.name));
   image_ = {context, vk::createImageCube(context, size, kReliefFormat,
-                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, mipCount(size))};
+                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, uint32_t(std::bit_width(size)))};
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = info.minFilter = VK_FILTER_LINEAR;
   info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
@@ -118,51 +92,20 @@ void ReliefCube::build(vk::Context& context, const PlanetGpuData& data) {
                             data.permutations());
 
   vk::Image& image = *image_;
-  const uint32_t levels = image.mipLevels;
   vk::submitAndWait(context, [&](VkCommandBuffer cmd) {
-    levelBarrier(cmd, image.image, 0, levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                 VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vk::transitionLevels(cmd, image, 0, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                         VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout, 0, 1, &set, 0, nullptr);
     vkCmdPushConstants(cmd, pipeline->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     const uint32_t groups = size() / gpu::kReliefWorkgroupSize;
     vkCmdDispatch(cmd, groups, groups, 6);
-    // The mip chain: each level a linear blit of the one before (heights and normals averaged;
-    // the shaders renormalize the normal).
-    VkImageLayout previous = VK_IMAGE_LAYOUT_GENERAL;
-    VkPipelineStageFlags2 previousStage = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    VkAccessFlags2 previousAccess = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    for (uint32_t level = 1; level < levels; ++level) {
-      levelBarrier(cmd, image.image, level - 1, 1, previous, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, previousStage,
-                   previousAccess, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-      levelBarrier(cmd, image.image, level, 1, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-      const int32_t from = int32_t(size() >> (level - 1)), to = int32_t(size() >> level);
-      VkImageBlit blit{};
-      blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 6};
-      blit.srcOffsets[1] = {from, from, 1};
-      blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 6};
-      blit.dstOffsets[1] = {to, to, 1};
-      vkCmdBlitImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image.image,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-      previous = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-      previousStage = VK_PIPELINE_STAGE_2_BLIT_BIT;
-      previousAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    }
-    // Every level to SHADER_READ_ONLY for the terrain and water shaders: all but the last are
-    // blit sources now (or, with one level, the compute output).
-    const VkPipelineStageFlags2 readers =
-        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
-    if (levels > 1) {
-      levelBarrier(cmd, image.image, 0, levels - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, 0, readers,
-                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }
-    levelBarrier(cmd, image.image, levels - 1, 1, previous, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, previousStage,
-                 previousAccess, readers, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    // The mip chain: heights and normals averaged (the shaders renormalize the normal).
+    vk::recordMipChain(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT);
   });
-  image.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
 }  // namespace planet

@@ -125,6 +125,56 @@ void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout,
   image.layout = newLayout;
 }
 
+void transitionLevels(VkCommandBuffer cmd, const Image& image, uint32_t firstLevel, uint32_t levelCount,
+                      VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = srcStage;
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstStageMask = dstStage;
+  barrier.dstAccessMask = dstAccess;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image.image;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, firstLevel, levelCount, 0, image.layers};
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void recordMipChain(VkCommandBuffer cmd, Image& image, VkImageLayout level0, VkPipelineStageFlags2 srcStage,
+                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 readers) {
+  const uint32_t levels = image.mipLevels;
+  // Level 0 is the first blit's source; the others are written whole, their contents discarded.
+  transitionLevels(cmd, image, 0, 1, level0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, srcStage, srcAccess,
+                   VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  if (levels > 1)
+    transitionLevels(cmd, image, 1, levels - 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  for (uint32_t level = 1; level < levels; ++level) {
+    const int32_t fromW = int32_t(std::max(image.extent.width >> (level - 1), 1u));
+    const int32_t fromH = int32_t(std::max(image.extent.height >> (level - 1), 1u));
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, image.layers};
+    blit.srcOffsets[1] = {fromW, fromH, 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, image.layers};
+    blit.dstOffsets[1] = {std::max(fromW / 2, 1), std::max(fromH / 2, 1), 1};
+    vkCmdBlitImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image.image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    // The level just written is the next blit's source.
+    transitionLevels(cmd, image, level, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  transitionLevels(cmd, image, 0, levels, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT, readers,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  image.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
 static VkBufferImageCopy fullCopy(const Image& image) {
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};

@@ -45,6 +45,18 @@ VkSampler createSampler(Context& context, const VkSamplerCreateInfo& info);
 void transitionImage(VkCommandBuffer cmd, Image& image, VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                      VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// Records a layout transition of mip levels [firstLevel, firstLevel + levelCount) of every layer
+// (the image's `layout` is not updated: it names the whole image's).
+void transitionLevels(VkCommandBuffer cmd, const Image& image, uint32_t firstLevel, uint32_t levelCount,
+                      VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                      VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+// Records the mip chain of a colour image whose level 0 was just written by (srcStage, srcAccess)
+// in layout `level0`: each level the linear (box) blit of the one before, every level of every
+// layer. Leaves all levels in SHADER_READ_ONLY_OPTIMAL for `readers` (and says so in `layout`).
+void recordMipChain(VkCommandBuffer cmd, Image& image, VkImageLayout level0, VkPipelineStageFlags2 srcStage,
+                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 readers);
+
 // Upload and readback cover every layer, tightly packed, layer after layer.
 // Fills the image with tightly packed texels and leaves it in `finalLayout` (blocking).
 void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout);
