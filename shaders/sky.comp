@@ -35,56 +35,153 @@ const float kInfinity = 3.0e38f;
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
-// Elias's cloud density d = 1 − S^max(0, v − (1 − coverage)) (seed 001 eq. 4.1) at the point
-// of the layer `t` metres along the ray; v cross-fades the three cover images (eq. 4.2) and
-// adds a little per-pixel detail noise, finer than the cube map's texels.
-float cloudDensity(vec3 rayLocal, float t) {
-  float R = sky.atmosphere.radii.x;
-  // The point relative to the planet's centre (local frame: centre at −R on z): planet size
-  // in float is fine here, cloud detail needs metres.
-  vec3 fromCentre = vec3(rayLocal.xy * t, R + sky.camera.x + rayLocal.z * t);
+// The cloud layer (issue 20 point 4) is a height field: the column over each point of the
+// cover holds cloud from the layer's bottom up to bottom + density · thickness, with extinction
+// ∝ density, so a dense column is a tall, optically thick cloud and a thin one a low wisp. A far
+// sample reads the density averaged over its footprint (the cover's mip levels): a sparse field
+// of small clouds becomes a low, thin haze there, not an opaque deck (gaps stay open).
+
+// Cover density (0..1) at a point `fromCentre` (local frame, relative to the planet's centre),
+// cross-faded between the three images (seed 001 eq. 4.2) from mip level `lod`.
+float coverDensity(vec3 fromCentre, float lod) {
   vec3 planetDir = normalize(mat3(sky.localToPlanet) * fromCentre);
   float angle = sky.cloudMotion.w;  // the layer drifts eastward: look up where it came from
   float ca = cos(angle), sa = sin(angle);
   vec3 drifted = vec3(ca * planetDir.x + sa * planetDir.y, -sa * planetDir.x + ca * planetDir.y, planetDir.z);
-  vec3 cover = textureLod(cloudCover, drifted, 0.0f).rgb;
-  float v = dot(cover, sky.cloudMotion.xyz);
-  NoiseParams detail;
-  detail.type = kNoiseFbm;
-  detail.octaves = 3u;
-  detail.hash = kNoiseHashFast;
-  detail.seedMix = floatBitsToUint(sky.cloudShape.w);
-  detail.lacunarity = 2.0f;
-  detail.octaveWeight = 0.5f;
-  detail.offset = 0.0f;
-  detail.gain = 0.0f;
-  detail.lastOctaveWeight = 1.0f;
-  // The detail fades out where a pixel spans more than half its wavelength (no aliasing).
-  float footprint = t * sky.extent.z * sky.cloudShape.y;
-  float detailWeight = 1.0f - smoothstep(0.25f, 0.5f, footprint);
-  if (detailWeight > 0.0f)
-    v += detailWeight * sky.cloudShape.z * evaluateFbm(detail, drifted * (R * sky.cloudShape.y));
-  float excess = max(0.0f, v - (1.0f - sky.clouds.z));
-  return 1.0f - exp(log(sky.clouds.w) * excess);
+  return dot(textureLod(cloudCover, drifted, lod).rgb, sky.cloudMotion.xyz);
 }
 
-// Opacity of the layer crossed at zenith cosine mu (the slant path is longer).
-float cloudAlpha(float density, float mu) {
-  float tau = sky.cloudShape.x * density / max(abs(mu), 0.12f);
-  return 1.0f - exp(-tau);
+// The mip level whose texels span `footprintM` on the layer (radius rLayer).
+float coverLod(float footprintM, float rLayer) {
+  return clamp(log2(max(footprintM / (sky.cloudShape.x * rLayer), 1.0f)), 0.0f, sky.cloudShape.y);
 }
 
-// Radiance of the cloud layer at altitude h, sun zenith cosine muS there, seen from `above`.
-vec3 cloudRadiance(float h, float muS, float alpha, bool above) {
-  vec3 sunLight = sunTransmittanceTable(sky.atmosphere, h, muS) * sky.atmosphere.ozoneSun.y;
-  // A thick layer lets little sunlight through to the side away from the sun.
-  bool sunSide = above == (muS > 0.0f);
-  float through = sunSide ? 1.0f : mix(1.0f, 0.18f, alpha);
-  const float kAlbedo = 0.9f;
+// Henyey–Greenstein phase function (per steradian) for the cosine nu between light and view.
+float henyeyGreenstein(float g, float nu) {
+  float k = 1.0f + g * g - 2.0f * g * nu;
+  return (1.0f - g * g) / (4.0f * kAtmospherePi * k * sqrt(k));
+}
+
+// Light scattered toward the eye by a cloud at altitude h in a column of density d, per unit of
+// its opacity. Sunlight reaches the point through the column above it: directly, attenuated by
+// Beer–Lambert along the slant path (the cloud's width caps it when the sun is low) and forward
+// peaked (the silver lining toward the sun); and diffusely, by the two-stream transmission of a
+// conservatively scattering slab, T = 1 / (1 + 3/4 (1 − g) τ) (Bohren 1987), which leaves a thick
+// cloud's base grey and its top bright. Sky light comes in the same way from above; a tenth of
+// it, the light from the ground and the sky's sides, reaches every part.
+vec3 cloudLight(float h, float d, float muS, float phase, vec3 sunLight, vec3 skyLight) {
+  float thickness = sky.clouds.y - sky.clouds.x;
+  float top = sky.clouds.x + d * thickness;
+  float depth = max(top - h, 0.0f);
+  float extinction = sky.clouds.z * d;
+  float slant = min(depth / max(muS, 0.05f), sky.clouds.w * thickness);
+  float direct = exp(-extinction * slant);
+  // Powder (Schneider & Vos 2015): just inside a cloud the light has not yet been scattered
+  // toward the eye, which darkens the rims facing the viewer away from the sun a little.
+  float powder = 1.0f - 0.5f * exp(-2.0f * extinction * depth);
+  float tauDown = extinction * depth;
+  float diffuse = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown / max(muS, 0.2f));
+  float diffuseSky = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown);
+  const float kAlbedo = 0.95f;
+  return kAlbedo * (sunLight * (phase * direct * powder + max(muS, 0.0f) / kAtmospherePi * diffuse) +
+                    skyLight / kAtmospherePi * (0.1f + 0.9f * diffuseSky));
+}
+
+// The sky irradiance table at sun zenith cosine muS.
+vec3 skyIrradianceAt(float muS) {
   float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * 15.0f;
   uint i = min(uint(x), 14u);
-  vec3 ambient = mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
-  return kAlbedo / kAtmospherePi * (sunLight * sqrt(max(muS, 0.0f)) * through + ambient);
+  return mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
+}
+
+// The ray's stretches inside the layer (at most two: a ray from above may dip below its bottom
+// and rise again), clipped to [0, tEnd]; returns how many.
+uint layerIntervals(float R, float h, float mu, float tEnd, out vec2 first, out vec2 second) {
+  float bottom = sky.clouds.x, top = sky.clouds.y;
+  vec2 topHits = raySphere(R, h, mu, top);
+  vec2 bottomHits = raySphere(R, h, mu, bottom);
+  first = vec2(-1.0f);
+  second = vec2(-1.0f);
+  if (h >= top) {
+    if (topHits.y < 0.0f) return 0u;  // misses the layer (or only grazes it)
+    if (bottomHits.y >= 0.0f) {
+      first = vec2(topHits.x, bottomHits.x);
+      second = vec2(bottomHits.y, topHits.y);
+    } else {
+      first = topHits;
+    }
+  } else if (h >= bottom) {
+    if (bottomHits.y >= 0.0f) {
+      first = vec2(0.0f, bottomHits.x);
+      second = vec2(bottomHits.y, topHits.x);
+    } else {
+      first = vec2(0.0f, topHits.x);
+    }
+  } else {
+    first = vec2(bottomHits.x, topHits.x);
+  }
+  vec2 a0 = first, a1 = second;
+  uint count = 0u;
+  if (a0.x >= 0.0f && a0.x < tEnd && a0.y > a0.x) {
+    first = vec2(a0.x, min(a0.y, tEnd));
+    count = 1u;
+  }
+  if (a1.x >= 0.0f && a1.x < tEnd && a1.y > a1.x) {
+    vec2 clipped = vec2(a1.x, min(a1.y, tEnd));
+    if (count == 0u) first = clipped;
+    else second = clipped;
+    count += 1u;
+  }
+  return count;
+}
+
+// Composes the layer along one stretch [t0, t1] of the ray: a few segments, nearer ones
+// shorter, each reading the cover once at its middle, averaged over the segment's length and
+// the pixel's footprint (the mip level), and crossing the column there analytically: the part of
+// the segment's altitude range inside the column is the part of its length inside the cloud.
+void marchLayer(vec3 dir, float R, float h, float mu, vec2 stretch, float nu, float muSCamera, float r,
+                vec3 sunLight, vec3 skyLight, inout vec3 light, inout float transmittance, inout float weightedT,
+                inout float weight) {
+  float bottom = sky.clouds.x, top = sky.clouds.y;
+  float thickness = top - bottom;
+  float phase = 0.8f * henyeyGreenstein(0.75f, nu) + 0.2f * henyeyGreenstein(-0.2f, nu);
+  float stretchLength = stretch.y - stretch.x;
+  float across = sqrt(max(1.0f - mu * mu, 0.0f));
+  uint segments = uint(clamp(ceil(stretchLength * across / (1.5f * thickness)), 1.0f, sky.cloudShape.z));
+  float hPrevious = altitudeAlong(R, h, mu, stretch.x);
+  float tPrevious = stretch.x;
+  for (uint i = 1u; i <= segments; ++i) {
+    float f = float(i) / float(segments);
+    float t = stretch.x + stretchLength * f * f;
+    float hNext = altitudeAlong(R, h, mu, t);
+    float tMid = 0.5f * (tPrevious + t);
+    float segment = t - tPrevious;
+    float footprint = max(tMid * sky.extent.z, 0.5f * segment * across);
+    vec3 fromCentre = vec3(dir.x * tMid, dir.y * tMid, R + h + dir.z * tMid);
+    float d = coverDensity(fromCentre, coverLod(footprint, R + 0.5f * (bottom + top)));
+    float columnTop = bottom + d * thickness;
+    float lo = min(hPrevious, hNext), hi = max(hPrevious, hNext);
+    // Soft top: a near-horizontal segment fades through the column's upper tenth.
+    float span = max(hi - lo, 0.1f * d * thickness + 20.0f);
+    float inside = clamp((min(hi, columnTop) - max(lo, bottom)) / span, 0.0f, 1.0f);
+    if (d > 0.002f && inside > 0.0f) {
+      float tau = sky.clouds.z * d * inside * segment;
+      float alpha = 1.0f - exp(-tau);
+      // Lit where the eye sees into the cloud: one optical depth past where the ray enters the
+      // column (its top seen from above, its base from below, its middle from the side).
+      float overlapLo = max(lo, bottom), overlapHi = min(hi, columnTop);
+      float visible = min(0.5f * (overlapHi - overlapLo), (hi - lo) / (max(segment, 1.0f) * sky.clouds.z * d));
+      float hLight = hNext < hPrevious ? overlapHi - visible : overlapLo + visible;
+      float muS = clamp((r * muSCamera + tMid * nu) / (R + hLight), -1.0f, 1.0f);
+      light += transmittance * alpha * cloudLight(hLight, d, muS, phase, sunLight, skyLight);
+      weightedT += transmittance * alpha * tMid;
+      weight += transmittance * alpha;
+      transmittance *= 1.0f - alpha;
+    }
+    tPrevious = t;
+    hPrevious = hNext;
+    if (transmittance < 0.01f) break;
+  }
 }
 
 void main() {
@@ -128,7 +225,9 @@ void main() {
   vec3 inscatter = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
 
-  // Cloud shadow on the drawn surface: how much of the sun the layer blocks above it.
+  // Cloud shadow on the drawn surface: the column where the ray toward the sun crosses the
+  // middle of the layer, crossed at the sun's slant (the cloud's width caps it), blocks the
+  // sun's direct light; sky light still comes in.
   bool clouds = sky.cameraPlanet.w > 0.5f && a.radii.w > 0.5f;
   float cloudH = 0.5f * (sky.clouds.x + sky.clouds.y);
   if (geometry && clouds) {
@@ -136,13 +235,36 @@ void main() {
     float muSSurface = (r * muS + tGeometry * nu) / (R + hSurface);
     if (hSurface < cloudH && muSSurface > 0.0f) {
       float toLayer = raySphere(R, hSurface, muSSurface, cloudH).x;
-      vec3 surfacePoint = dir * tGeometry + vec3(0.0f, 0.0f, h);  // from the anchor
-      vec3 layerPoint = surfacePoint + sun * toLayer;
-      // cloudDensity wants a camera ray: express the layer point as one from the camera.
-      vec3 fromCamera = layerPoint - vec3(0.0f, 0.0f, h);
-      float reach = length(fromCamera);
-      float density = cloudDensity(fromCamera / reach, reach);
-      surface *= 1.0f - 0.6f * cloudAlpha(density, muSSurface);
+      vec3 layerPoint = dir * tGeometry + sun * toLayer;  // from the camera
+      vec3 fromCentre = vec3(layerPoint.x, layerPoint.y, R + h + layerPoint.z);
+      float footprint = max(tGeometry * sky.extent.z, 1000.0f);
+      float d = coverDensity(fromCentre, coverLod(footprint, R + cloudH));
+      float thickness = sky.clouds.y - sky.clouds.x;
+      float slant = min(d * thickness / muSSurface, sky.clouds.w * thickness);
+      surface *= 1.0f - 0.75f * (1.0f - exp(-sky.clouds.z * d * slant));
+    }
+  }
+
+  // The cloud layer along the view ray, composed into the march below at the distance its
+  // opacity is centred on.
+  vec3 cloudLightSum = vec3(0.0f);
+  float cloudTransmittance = 1.0f;
+  float tCloud = -1.0f;
+  if (clouds) {
+    vec2 first, second;
+    uint stretches = layerIntervals(R, h, mu, tEnd, first, second);
+    if (stretches > 0u) {
+      // Sunlight and sky light once, at the middle of the layer where the ray enters it.
+      float muSLayer = clamp((r * muS + first.x * nu) / (R + cloudH), -1.0f, 1.0f);
+      vec3 sunLight = sunTransmittanceTable(a, cloudH, muSLayer) * a.ozoneSun.y;
+      vec3 skyLight = skyIrradianceAt(muSLayer);
+      float weightedT = 0.0f, weight = 0.0f;
+      marchLayer(dir, R, h, mu, first, nu, muS, r, sunLight, skyLight, cloudLightSum, cloudTransmittance, weightedT,
+                 weight);
+      if (stretches > 1u && cloudTransmittance >= 0.01f)
+        marchLayer(dir, R, h, mu, second, nu, muS, r, sunLight, skyLight, cloudLightSum, cloudTransmittance,
+                   weightedT, weight);
+      if (weight > 0.0f) tCloud = weightedT / weight;
     }
   }
 
@@ -157,14 +279,10 @@ void main() {
     if (tStart >= 0.0f && tExit > tStart && min(tEnd, tExit) > tStart) {
       float tStop = min(tEnd, tExit);
       // Segment boundaries: the start, the layer crossings in between, the end.
-      float cuts[4];
+      float cuts[3];
       uint cutCount = 0u;
       cuts[cutCount++] = tStart;
-      if (clouds) {
-        vec2 layer = raySphere(R, h, mu, cloudH);
-        if (layer.x > tStart && layer.x < tStop) cuts[cutCount++] = layer.x;
-        if (layer.y > tStart && layer.y < tStop) cuts[cutCount++] = layer.y;
-      }
+      if (tCloud > tStart && tCloud < tStop) cuts[cutCount++] = tCloud;
       cuts[cutCount++] = tStop;
       float total = max(tStop - tStart, 1e-3f);
       uint samples = uint(sky.forward.w);
@@ -175,12 +293,9 @@ void main() {
         float r0 = R + h0;
         float mu0 = clamp((r * mu + t0) / r0, -1.0f, 1.0f);
         float muS0 = clamp((r * muS + t0 * nu) / r0, -1.0f, 1.0f);
-        if (i > 0u) {  // a layer crossing at t0
-          float density = cloudDensity(dir, t0);
-          float alpha = cloudAlpha(density, mu0);
-          bool above = mu0 < 0.0f;  // coming down onto the layer: seen from above
-          inscatter += transmittance * alpha * cloudRadiance(h0, muS0, alpha, above);
-          transmittance *= 1.0f - alpha;
+        if (i > 0u) {  // the cloud layer at t0
+          inscatter += transmittance * cloudLightSum;
+          transmittance *= cloudTransmittance;
         }
         uint steps = max(2u, uint(ceil(float(samples) * (t1 - t0) / total)));
         vec3 segmentLight, segmentTransmittance;

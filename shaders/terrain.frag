@@ -1,15 +1,18 @@
 #version 450
-// Terrain shading (issue 3, point 8): per-pixel normal and height from the world-anchored
-// patch textures where they reach (finest level first, blended across level edges), else the
-// vertex normal; colour by altitude, slope, latitude and a noise perturbation of the band
-// edges (seed 000 "Earth-like" and "altitude + noise" schemes, seed 001's altitude colour
-// map); sunlight through the atmosphere (transmittance table) plus sky light, as HDR radiance.
+// Terrain shading (issue 3, point 8; issue 20, points 1 and 5): per-pixel normal and height from
+// the world-anchored patch textures where they reach (finest level first, blended across level
+// edges), else the vertex normal; the material from climate and slope (terrain_material.glsl)
+// with per-pixel detail below the vertex spacing (terrain_detail.glsl), or the altitude and giant
+// schemes' bands; sunlight through the atmosphere (transmittance table) plus sky light, as HDR
+// radiance.
 // Ground below sea level is the sea floor; the water pass draws the sea over it.
 #extension GL_GOOGLE_include_directive : require
 
 #include "terrain_common.glsl"
 
 #include "terrain_surface.glsl"
+
+#include "terrain_material.glsl"
 
 #include "common/rings.glsl"
 
@@ -20,6 +23,10 @@ layout(location = 3) in float inHeight;
 layout(location = 4) in vec3 inToCamera;
 
 layout(location = 0) out vec4 outColor;
+// The shader writes its depth (to push ground under the sea back, main below), which would turn
+// off the depth test before shading; it only ever moves a fragment farther (reversed-Z: a
+// smaller depth), so the implementation may still reject hidden fragments before shading them.
+layout(depth_less) out float gl_FragDepth;
 
 const uint kSchemeEarth = 0u;
 const uint kSchemeAltitude = 1u;
@@ -27,72 +34,55 @@ const uint kSchemeMoon = 2u;
 const uint kSchemeMars = 3u;
 const uint kSchemeGiant = 4u;
 
-// The earth scheme's vegetation at a point: forest and grass where it is wet, desert in the
-// subtropical belts (about 15-35° of latitude, where the Hadley cells' dry air sinks), tundra
-// toward the ice caps; the colour noise breaks every zone into patches. Derived from the
-// preset's lowland, highland and beach colours.
-vec3 vegetation(float latitudeDeg, float jitter) {
-  float belt = (latitudeDeg - 24.0f) / 10.0f;
-  float dryness = clamp(0.85f * exp(-belt * belt) + 0.6f * jitter + 0.12f, 0.0f, 1.0f);
-  vec3 forest = 0.75f * frame.colorLowland.rgb;
-  vec3 grass = 1.15f * mix(frame.colorLowland.rgb, frame.colorHighland.rgb, 0.35f);
-  vec3 desert = mix(frame.colorBeach.rgb, frame.colorHighland.rgb, 0.45f);
-  vec3 c = mix(forest, grass, smoothstep(0.05f, 0.4f, dryness));
-  c = mix(c, desert, smoothstep(0.45f, 0.75f, dryness));
-  float tundra = smoothstep(52.0f, 64.0f, latitudeDeg + 6.0f * jitter);
-  return mix(c, 0.9f * frame.colorHighland.rgb, tundra);
-}
-
-// pixelM: how much the height changes across this pixel (fwidth), so that bands thinner than a
-// pixel (a beach seen from orbit) fade to their share of it instead of aliasing into dots.
-vec3 groundColor(float altitude, float slope, float sinLatitude, float jitter, float pixelM) {
+// The schemes that are not materials (terrain_material.glsl): the debug ramp by altitude and the
+// gas giant's bands.
+vec3 bandColor(float altitude, float sinLatitude) {
   uint scheme = uint(frame.shading.y);
-  float beach = frame.planet.z;
   float snowLine = frame.planet.w;
-  float iceCap = frame.shading.x;
-  float lat = abs(sinLatitude) + 0.04f * jitter;
   if (scheme == kSchemeAltitude) {
     float t = clamp(altitude / max(snowLine, 1.0f), 0.0f, 1.0f);
     return t < 0.5f ? mix(frame.colorLowland.rgb, frame.colorHighland.rgb, 2.0f * t)
                     : mix(frame.colorHighland.rgb, frame.colorSnow.rgb, 2.0f * t - 1.0f);
   }
-  if (scheme == kSchemeMoon) {
-    // Maria low and dark, highlands bright, fresh rock on steep slopes.
-    vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb,
-                 smoothstep(-1500.0f, 1500.0f, altitude + 600.0f * jitter));
-    return mix(c, frame.colorCliff.rgb, smoothstep(0.25f, 0.5f, slope));
-  }
-  if (scheme == kSchemeGiant) {
-    // Belts and zones follow the latitude; the preset's layers (small heights, large
-    // wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
-    // by about a twentieth of its width. The poles fade into a dull hood.
-    float latitude = asin(clamp(sinLatitude, -1.0f, 1.0f));
-    float warp = altitude / max(snowLine, 1.0f);
-    float s = 17.0f * latitude + 0.3f * warp;
-    float zones = smoothstep(-0.35f, 0.35f, sin(s));
-    float fine = 0.5f + 0.5f * sin(3.7f * s + 0.4f * warp);
-    vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb, zones);
-    c = mix(c, frame.colorBeach.rgb, 0.35f * fine * (1.0f - zones));
-    return mix(c, frame.colorCliff.rgb, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));
-  }
-  vec3 c = frame.colorLowland.rgb;
-  float highland = 0.7f * snowLine;
-  if (scheme == kSchemeEarth) {
-    c = vegetation(degrees(asin(min(abs(sinLatitude), 1.0f))), jitter);
-    highland = 0.85f * snowLine;
-  }
-  c = mix(c, frame.colorHighland.rgb, smoothstep(0.25f * snowLine, highland, altitude + 250.0f * jitter));
-  if (scheme == kSchemeEarth && beach > 0.0f) {
-    float top = beach * (1.0f + 0.6f * jitter);
-    float sand = (1.0f - smoothstep(top - pixelM, top + pixelM, altitude)) * clamp(top / max(pixelM, 1e-3f), 0.0f, 1.0f);
-    c = mix(c, frame.colorBeach.rgb, sand);
-  }
-  c = mix(c, frame.colorCliff.rgb, smoothstep(0.3f, 0.55f, slope + 0.08f * jitter));
-  // The snow line falls toward the poles; snow does not stick to cliffs.
-  float snowAltitude = snowLine * (1.0f - 0.6f * lat * lat * lat * lat) + 300.0f * jitter;
-  float snow = smoothstep(snowAltitude - 100.0f, snowAltitude + 100.0f, altitude) * (1.0f - smoothstep(0.45f, 0.7f, slope));
-  snow = max(snow, smoothstep(iceCap - 0.01f, iceCap + 0.01f, lat));
-  return mix(c, frame.colorSnow.rgb, snow);
+  // Giant: belts and zones follow the latitude; the preset's layers (small heights, large
+  // wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
+  // by about a twentieth of its width. The poles fade into a dull hood.
+  float latitude = asin(clamp(sinLatitude, -1.0f, 1.0f));
+  float warp = altitude / max(snowLine, 1.0f);
+  float s = 17.0f * latitude + 0.3f * warp;
+  float zones = smoothstep(-0.35f, 0.35f, sin(s));
+  float fine = 0.5f + 0.5f * sin(3.7f * s + 0.4f * warp);
+  vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb, zones);
+  c = mix(c, frame.colorBeach.rgb, 0.35f * fine * (1.0f - zones));
+  return mix(c, frame.colorCliff.rgb, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));
+}
+
+// The material at a ground pixel with its detail: albedo, and the normal tilted by the detail's
+// height field. The detail's lattice is the planet's (terrain_detail.glsl), so it does not swim,
+// and it depends on nothing of the patch levels, so it is continuous across them.
+vec3 groundAlbedo(float altitude, float slope, float sinLatitude, float jitter, float pixelM, vec3 offsetPlanet,
+                  float footprintM, inout vec3 normal) {
+  uint scheme = uint(frame.shading.y);
+  GroundDetail d = groundDetail(offsetPlanet, footprintM);
+  // The material noise: the band noise, the coarse octaves, and a little of the detail's second
+  // field, so edges are ragged down to the pixel.
+  float noise = jitter + groundBiomeNoise(offsetPlanet, footprintM) + 0.04f * d.hue;
+  GroundMaterial m;
+  if (scheme == kSchemeEarth)
+    m = earthMaterial(altitude, slope, sinLatitude, noise, pixelM);
+  else if (scheme == kSchemeMars)
+    m = marsMaterial(altitude, slope, sinLatitude, noise);
+  else
+    m = moonMaterial(altitude, slope, noise);
+  // Normal: minus the detail gradient's part along the surface.
+  vec3 g = mat3(frame.planetToLocal) * (d.slope * (frame.slopes.z * m.relief));
+  normal = normalize(normal - (g - dot(g, normal) * normal));
+  // Albedo: lognormal variation (it stays positive, and a dark canopy varies as much in ratio as
+  // bright sand), a warm-cool tint along the second field, and stones of the rock's colours.
+  float contrast = frame.slopes.w * m.contrast;
+  vec3 albedo = m.albedo * exp(contrast * (vec3(d.albedo) + d.hue * vec3(0.5f, 0.2f, -0.5f)));
+  vec3 stone = mix(frame.colorScree.rgb, frame.colorCliff.rgb, 0.5f + 0.5f * d.hue) * (1.0f + 0.6f * d.albedo);
+  return mix(albedo, stone, min(frame.slopes.w, 1.0f) * m.stony * d.stones);
 }
 
 void main() {
@@ -105,6 +95,10 @@ void main() {
   float height;
   surfaceDetail(inAttributes.xy, inUp, inNormal, inHeight, normal, height);
   float pixelM = fwidth(height);  // before any branch: derivatives need uniform control flow
+  // This pixel relative to the mesh's anchor (small floats near the camera) and its footprint
+  // on the ground (the larger of its two sides, so no octave finer than the pixel shows).
+  vec3 offsetPlanet = mat3(frame.localToPlanet) * (vec3(0.0f, 0.0f, frame.camera.x) - inToCamera);
+  float footprintM = max(length(dFdx(inToCamera)), length(dFdy(inToCamera)));
   vec3 up = normalize(inUp);
   float jitter = inAttributes.z;
   float seaLevel = frame.planet.x;
@@ -129,7 +123,11 @@ void main() {
     }
   } else {
     float slope = 1.0f - max(dot(normal, up), 0.0f);
-    albedo = groundColor(height - seaLevel, slope, inAttributes.w, jitter, pixelM);
+    uint scheme = uint(frame.shading.y);
+    if (scheme == kSchemeAltitude || scheme == kSchemeGiant)
+      albedo = bandColor(height - seaLevel, inAttributes.w);
+    else
+      albedo = groundAlbedo(height - seaLevel, slope, inAttributes.w, jitter, pixelM, offsetPlanet, footprintM, normal);
   }
   vec3 sunLight = sunIrradianceAt(height, up);
   if (frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it

@@ -1,9 +1,18 @@
 #version 450
-// Water shading (issue 4, point 1): Fresnel reflection of the sky (Schlick, F0 = 0.02), the
-// sun's glint off small animated waves, light scattered up from the water body in the
-// preset's deep/shallow colours, and transparency that grows toward the coast from the depth
-// under the pixel (sea level minus the patch-texture height). Output is premultiplied: the
-// blend keeps (1 − α) of the sea floor drawn before.
+// Water shading (issue 4, point 1; glint issue 20, point 3): Fresnel reflection of the sky, the
+// sun's glint off a rough sea, light scattered up from the water body in the preset's
+// deep/shallow colours, and transparency that grows toward the coast from the depth under the
+// pixel (sea level minus the patch-texture height). Output is premultiplied: the blend keeps
+// (1 − α) of the sea floor drawn before.
+//
+// The glint is a microfacet reflection (Cook & Torrance 1982) with the wave-slope distribution
+// Cox & Munk (1954) measured from sun-glitter photographs: an isotropic Gaussian of slopes with
+// total mean square slope σ² = 0.003 + 0.00512·U (U: wind speed at 10 m, m/s), i.e. the
+// Beckmann distribution with m² = σ²; Fresnel of water (n = 1.333, unpolarised) and Smith's
+// height-correlated shadowing-masking (Heitz 2014) with Walter et al.'s (2007) rational Λ for
+// Beckmann. The waves the pixel resolves tilt the normal; the rest of σ² (slopes of waves
+// smaller than the pixel, and the resolved waves faded below the pixel's footprint) widens the
+// distribution, so the total stays Cox–Munk's at every distance and no wave aliases.
 #extension GL_GOOGLE_include_directive : require
 
 #include "terrain_common.glsl"
@@ -17,6 +26,52 @@ layout(location = 4) in vec3 inToCamera;
 
 layout(location = 0) out vec4 outColor;
 
+const float kWaterIndex = 1.333f;  // refractive index of sea water (air = 1)
+// The sun's disc (0.533° across, radius αs = 4.65e-3 rad) seen in a facet: the half vector
+// sweeps a disc of slopes of radius αs/2. Added to the waves' variance as (αs/2)², the Gaussian
+// has that disc's own peak density 1/(π(αs/2)²), so where the waves leave no variance the glint
+// stays finite: the sun's image at its true radiance E/(π αs²) times Fresnel.
+const float kSunDiscSlopeVariance = 5.41e-6f;
+// A resolved wave fades into the roughness between these phase changes per pixel (radians):
+// 8 pixels per wavelength keep it whole, 4 (half Nyquist) remove it before it can alias.
+const float kWaveFadeStart = 0.25f * kAtmospherePi;
+const float kWaveFadeEnd = 0.5f * kAtmospherePi;
+
+// Fresnel reflectance of unpolarised light from air onto water at incidence cosine c (exact
+// dielectric form, mean of the s and p reflectances).
+float fresnelWater(float c) {
+  c = clamp(c, 0.0f, 1.0f);
+  float g = sqrt(kWaterIndex * kWaterIndex - 1.0f + c * c);
+  float a = (g - c) / (g + c);
+  float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+  return 0.5f * a * a * (1.0f + b * b);
+}
+
+// Smith's Λ for the Beckmann distribution of total mean square slope m2, at a direction whose
+// cosine to the mean normal is c (Walter et al. 2007, eq. 27, rational fit of the erf form).
+float smithLambdaBeckmann(float c, float m2) {
+  c = clamp(c, 1e-4f, 1.0f);
+  float a = c / (sqrt(m2) * sqrt(1.0f - c * c) + 1e-12f);
+  if (a >= 1.6f) return 0.0f;
+  return (1.0f - 1.259f * a + 0.396f * a * a) / (3.535f * a + 2.181f * a * a);
+}
+
+// Radiance factor of the glint: Fresnel · D · G / (4 cos θv), times the sun's irradiance
+// (normal to its rays) gives the reflected radiance. m2: the unresolved total mean square slope.
+float glintFactor(vec3 normal, vec3 toCamera, vec3 sun, float m2) {
+  float cosV = dot(normal, toCamera);
+  float cosL = dot(normal, sun);
+  if (cosV <= 0.0f || cosL <= 0.0f) return 0.0f;
+  vec3 halfway = normalize(sun + toCamera);
+  float cosH = max(dot(normal, halfway), 1e-4f);
+  float cosH2 = cosH * cosH;
+  float tan2 = (1.0f - cosH2) / cosH2;
+  // Beckmann / Cox–Munk: the density of facet slopes, per solid angle of facet normals.
+  float distribution = exp(-tan2 / m2) / (kAtmospherePi * m2 * cosH2 * cosH2);
+  float shadowing = 1.0f / (1.0f + smithLambdaBeckmann(cosV, m2) + smithLambdaBeckmann(cosL, m2));
+  return fresnelWater(dot(halfway, sun)) * distribution * shadowing / (4.0f * cosV);
+}
+
 void main() {
   vec3 terrainNormal;
   float ground;
@@ -27,6 +82,11 @@ void main() {
   // positive (a hard cut left stair-steps where a texel spans a few pixels, as near the limb).
   float fwidthDepth = fwidth(depth);
   float coverage = clamp(depth / max(fwidthDepth, 1e-6f) + 0.5f, 0.0f, 1.0f);
+  // The pixel's footprint in the face plane, taken before the discard (derivatives need the
+  // whole quad).
+  vec2 offsetM = inAttributes.xy * frame.camera.y;
+  vec2 offsetDx = dFdx(offsetM);
+  vec2 offsetDy = dFdy(offsetM);
   if (coverage <= 0.0f) discard;  // dry land over the whole pixel
   vec3 up = normalize(inUp);
   vec3 toCamera = normalize(inToCamera);
@@ -36,34 +96,36 @@ void main() {
   // face reference point in double, the pixel adds its small offset (no float at planet scale).
   vec3 axisA = mat3(frame.planetToLocal) * frame.faceAxisA.xyz;
   vec3 axisB = mat3(frame.planetToLocal) * frame.faceAxisB.xyz;
-  vec2 offsetM = inAttributes.xy * frame.camera.y;
   vec2 slope = vec2(0.0f);
+  float resolvedVariance = 0.0f;
   // Without patch textures (quality low, --no-patches) there is no face frame and the CPU
-  // leaves the waves zero: the sea is then a mirror (normalize(0) would make every pixel NaN).
+  // leaves the waves zero: all of the slope variance is then unresolved roughness.
   uint waveCount = frame.refMinusNadir.w > 0.5f ? kWaterWaveCount : 0u;
   for (uint i = 0u; i < waveCount; ++i) {
-    vec4 wave = frame.waves[i];  // xy: wave vector (1/m, face axes), z: phase at the reference, w: amplitude · k
+    vec4 wave = frame.waves[i];  // xy: wave vector (1/m, face axes), z: phase at the reference, w: share of the slope
+    // The wave's phase change across the pixel: where it nears Nyquist the wave leaves the
+    // normal (it would alias into moiré) and its slope variance joins the roughness below.
+    float phasePerPixel = abs(dot(wave.xy, offsetDx)) + abs(dot(wave.xy, offsetDy));
+    float shown = 1.0f - smoothstep(kWaveFadeStart, kWaveFadeEnd, phasePerPixel);
+    float amplitude = frame.camera.w * wave.w * shown;
     float phase = wave.z + dot(wave.xy, offsetM);
-    slope += wave.w * cos(phase) * normalize(wave.xy);
+    slope += amplitude * cos(phase) * normalize(wave.xy);
+    resolvedVariance += 0.5f * amplitude * amplitude;  // a sine of slope amplitude A: mean square A²/2
   }
-  // Waves flatten with distance (they are far below a pixel there: keep the mean surface).
-  float pixelM = length(fwidth(offsetM));
-  slope *= frame.camera.w / (1.0f + pixelM / (0.5f * frame.water.y));
   vec3 normal = normalize(up - slope.x * axisA - slope.y * axisB);
+  // Cox–Munk's total less what the normal shows here, plus the sun's disc.
+  float unresolvedVariance = max(frame.water.w - resolvedVariance, 0.0f) + kSunDiscSlopeVariance;
 
   float cosView = max(dot(normal, toCamera), 0.0f);
-  float fresnel = 0.02f + 0.98f * pow(1.0f - cosView, 5.0f);
+  float fresnel = fresnelWater(cosView);
   float muS = dot(up, sun);
   vec3 sunLight = sunIrradianceAt(frame.planet.x, up);
   vec3 skyLight = skyIrradianceAt(muS);
   // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);
   vec3 skyRadiance = skyLight / kAtmospherePi * mix(1.6f, 0.7f, clamp(dot(reflected, up), 0.0f, 1.0f));
-  // Sun glint: normalised Blinn-Phong lobe.
-  vec3 halfway = normalize(sun + toCamera);
-  const float kShininess = 600.0f;
-  float glint = (kShininess + 8.0f) / (8.0f * kAtmospherePi) * pow(max(dot(normal, halfway), 0.0f), kShininess);
-  vec3 specular = fresnel * (skyRadiance + sunLight * glint * step(0.0f, dot(normal, sun)));
+  vec3 glint = sunLight * glintFactor(normal, toCamera, sun, unresolvedVariance);
+  vec3 specular = fresnel * skyRadiance + glint;
   // The water body: shallow colour near the coast, deep colour offshore, lit from above.
   float clarity = frame.water.x;
   vec3 body = mix(frame.colorShallowWater.rgb, frame.colorDeepWater.rgb, smoothstep(0.0f, 6.0f * clarity, depth));

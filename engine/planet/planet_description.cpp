@@ -28,7 +28,14 @@ using toml_reader::shortened;
 using toml_reader::TableReader;
 using toml_reader::typeName;
 
-constexpr std::string_view kTopKeys[] = {"planet", "colors", "layer", "atmosphere", "clouds", "water", "stars"};
+constexpr std::string_view kTopKeys[] = {"planet",     "colors", "materials", "layer",
+                                         "atmosphere", "clouds", "water",     "stars"};
+constexpr std::string_view kMaterialKeys[] = {
+    "equator_temperature_c", "pole_temperature_drop_c", "lapse_rate_k_per_km", "snow_temperature_c",
+    "moisture",              "moisture_noise",          "coastal_height_m",    "dry_belt",
+    "rock_slope_deg",        "snow_slope_deg",          "detail_relief",       "detail_contrast",
+    "conifer",               "forest",                  "grass",               "dry_grass",
+    "desert",                "tundra",                  "scree"};
 constexpr std::string_view kAtmosphereKeys[] = {"height_m",
                                                 "rayleigh_scattering",
                                                 "rayleigh_scale_height_m",
@@ -40,9 +47,10 @@ constexpr std::string_view kAtmosphereKeys[] = {"height_m",
                                                 "ozone_absorption",
                                                 "ozone_center_m",
                                                 "ozone_width_m"};
-constexpr std::string_view kCloudKeys[] = {"bottom_m", "top_m", "coverage", "sharpness",       "wavelength_m",
-                                           "octaves",  "seed",  "wind_mps", "evolve_period_s", "opacity"};
-constexpr std::string_view kWaterKeys[] = {"clarity_m", "wave_wavelength_m", "wave_slope"};
+constexpr std::string_view kCloudKeys[] = {
+    "bottom_m", "top_m",   "coverage", "sharpness",        "wavelength_m", "octaves", "seed",       "wind_mps",
+    "evolve_period_s", "opacity", "climate", "cyclones", "cyclone_radius_m", "swirl", "shear", "warp", "resolution"};
+constexpr std::string_view kWaterKeys[] = {"clarity_m", "wave_wavelength_m", "wave_slope", "wind_mps"};
 constexpr std::string_view kStarKeys[] = {"enabled", "seed", "faintest_magnitude", "brightness"};
 constexpr std::string_view kPlanetKeys[] = {"name",        "radius_m",     "has_ocean",
                                             "sea_level_m", "height_scale", "base_height_m"};
@@ -92,6 +100,44 @@ PlanetColors readColors(const Context& context, const toml::table& table) {
   return colors;
 }
 
+MaterialDescription readMaterials(const Context& context, const toml::table& table, ColorScheme scheme) {
+  TableReader reader(context, table, "[materials]", kMaterialKeys);
+  MaterialDescription m = defaultMaterials(scheme);
+  struct NumberKey {
+    std::string_view key;
+    double MaterialDescription::*member;
+    Range range;
+  };
+  const NumberKey numberKeys[] = {
+      {"equator_temperature_c", &MaterialDescription::equatorTemperatureC, kTemperatureRangeC},
+      {"pole_temperature_drop_c", &MaterialDescription::poleTemperatureDropC, kTemperatureDropRangeC},
+      {"lapse_rate_k_per_km", &MaterialDescription::lapseRateKPerKm, kLapseRangeKPerKm},
+      {"snow_temperature_c", &MaterialDescription::snowTemperatureC, kTemperatureRangeC},
+      {"moisture", &MaterialDescription::moisture, kUnitRange},
+      {"moisture_noise", &MaterialDescription::moistureNoise, kMaterialKnobRange},
+      {"coastal_height_m", &MaterialDescription::coastalHeightM, kCoastalHeightRangeM},
+      {"dry_belt", &MaterialDescription::dryBelt, kMaterialKnobRange},
+      {"rock_slope_deg", &MaterialDescription::rockSlopeDeg, kSlopeRangeDeg},
+      {"snow_slope_deg", &MaterialDescription::snowSlopeDeg, kSlopeRangeDeg},
+      {"detail_relief", &MaterialDescription::detailRelief, kMaterialKnobRange},
+      {"detail_contrast", &MaterialDescription::detailContrast, kMaterialKnobRange},
+  };
+  for (const NumberKey& k : numberKeys) m.*k.member = reader.number(k.key, k.range).value_or(m.*k.member);
+  struct ColorKey {
+    std::string_view key;
+    glm::vec3 MaterialDescription::*member;
+  };
+  const ColorKey colorKeys[] = {
+      {"conifer", &MaterialDescription::conifer}, {"forest", &MaterialDescription::forest},
+      {"grass", &MaterialDescription::grass},     {"dry_grass", &MaterialDescription::dryGrass},
+      {"desert", &MaterialDescription::desert},   {"tundra", &MaterialDescription::tundra},
+      {"scree", &MaterialDescription::scree},
+  };
+  for (const ColorKey& c : colorKeys)
+    if (auto value = reader.color(c.key)) m.*c.member = *value;
+  return m;
+}
+
 AtmosphereDescription readAtmosphere(const Context& context, const toml::table& table) {
   TableReader reader(context, table, "[atmosphere]", kAtmosphereKeys);
   AtmosphereDescription a;
@@ -132,6 +178,13 @@ CloudDescription readClouds(const Context& context, const toml::table& table) {
   c.windMps = reader.number("wind_mps", kWindRangeMps).value_or(c.windMps);
   c.evolvePeriodS = reader.number("evolve_period_s", kEvolvePeriodRangeS).value_or(c.evolvePeriodS);
   c.opacity = reader.number("opacity", kCloudOpacityRange).value_or(c.opacity);
+  c.climate = reader.number("climate", kCloudClimateRange).value_or(c.climate);
+  c.cyclones = int(reader.integer("cyclones", kCloudCyclonesRange).value_or(c.cyclones));
+  c.cycloneRadiusM = reader.number("cyclone_radius_m", kCloudWavelengthRangeM).value_or(c.cycloneRadiusM);
+  c.swirl = reader.number("swirl", kCloudSwirlRange).value_or(c.swirl);
+  c.shear = reader.number("shear", kCloudShearRange).value_or(c.shear);
+  c.warp = reader.number("warp", kUnitRange).value_or(c.warp);
+  c.resolution = int(reader.integer("resolution", kCloudResolutionRange).value_or(c.resolution));
   return c;
 }
 
@@ -141,6 +194,7 @@ WaterDescription readWater(const Context& context, const toml::table& table) {
   w.clarityM = reader.number("clarity_m", kClarityRangeM).value_or(w.clarityM);
   w.waveWavelengthM = reader.number("wave_wavelength_m", kWaveWavelengthRangeM).value_or(w.waveWavelengthM);
   w.waveSlope = reader.number("wave_slope", kWaveSlopeRange).value_or(w.waveSlope);
+  w.windMps = reader.number("wind_mps", kSeaWindRangeMps).value_or(w.windMps);
   return w;
 }
 
@@ -288,7 +342,7 @@ PlanetColors defaultColors(ColorScheme scheme) {
       c.beach = {0.480f, 0.400f, 0.240f};
       c.lowland = {0.050f, 0.110f, 0.020f};
       c.highland = {0.170f, 0.130f, 0.070f};
-      c.cliff = {0.130f, 0.120f, 0.110f};
+      c.cliff = {0.200f, 0.180f, 0.160f};  // granite to weathered mixed rock (ECOSTRESS)
       c.snow = {0.850f, 0.870f, 0.900f};
       break;
     case ColorScheme::Altitude:
@@ -354,6 +408,9 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
   d.heightScale = planet.number("height_scale", kHeightScaleRange).value_or(1.0);
   d.baseHeightM = planet.number("base_height_m", kBaseHeightRangeM).value_or(0.0);
   d.colors = readColors(context, requireTable(context, root, "colors"));
+  d.materials = defaultMaterials(d.colors.scheme);
+  if (const toml::table* table = optionalTable(context, root, "materials"))
+    d.materials = readMaterials(context, *table, d.colors.scheme);
   d.layers = readLayers(context, root);
   if (const toml::table* table = optionalTable(context, root, "atmosphere"))
     d.atmosphere = readAtmosphere(context, *table);
@@ -394,6 +451,49 @@ PlanetDescription resolvePreset(const std::string& nameOrFile) {
   throw Error(fmt::format("unknown planet preset '{}' (built-in: {}; or a FILE.toml)", shortened(nameOrFile), names));
 }
 
+MaterialDescription defaultMaterials(ColorScheme scheme) {
+  // Reflectances: band means (red 620-700 nm, green 500-570, blue 450-500) of the ECOSTRESS
+  // spectral library (Meerdink et al. 2019, formerly ASTER: vegetation, soil, rock spectra) and
+  // MODIS white-sky albedo for canopies; the presets repeat them with their sources.
+  MaterialDescription m;
+  m.conifer = {0.030f, 0.050f, 0.025f};
+  m.forest = {0.040f, 0.080f, 0.030f};
+  m.grass = {0.065f, 0.110f, 0.045f};
+  m.dryGrass = {0.250f, 0.210f, 0.120f};
+  m.desert = {0.420f, 0.300f, 0.160f};
+  m.tundra = {0.110f, 0.110f, 0.070f};
+  m.scree = {0.240f, 0.220f, 0.200f};
+  switch (scheme) {
+    case ColorScheme::Mars:
+      // Mean annual surface temperatures of the Mars Climate Database: about −50 °C at the
+      // equator, −125 °C (the CO₂ frost point) at the residual caps; a 2.5 K/km lapse rate.
+      m.equatorTemperatureC = -50.0;
+      m.poleTemperatureDropC = 75.0;
+      m.lapseRateKPerKm = 2.5;
+      m.snowTemperatureC = -122.0;
+      m.moisture = 0.0;
+      m.moistureNoise = 0.0;
+      m.dryBelt = 0.0;
+      m.rockSlopeDeg = 35.0;
+      m.scree = {0.220f, 0.110f, 0.060f};
+      break;
+    case ColorScheme::Moon:
+      m.equatorTemperatureC = 0.0;
+      m.poleTemperatureDropC = 0.0;
+      m.lapseRateKPerKm = 0.0;
+      m.snowTemperatureC = -273.0;  // no frost in the sunlit regolith
+      m.moisture = 0.0;
+      m.moistureNoise = 0.0;
+      m.dryBelt = 0.0;
+      m.rockSlopeDeg = 35.0;
+      m.scree = {0.140f, 0.135f, 0.130f};
+      break;
+    default:
+      break;
+  }
+  return m;
+}
+
 std::string canonicalForm(const PlanetDescription& d) {
   auto color = [](const glm::vec3& c) {
     return fmt::format("{},{},{}", formatNumber(c.x), formatNumber(c.y), formatNumber(c.z));
@@ -410,6 +510,16 @@ std::string canonicalForm(const PlanetDescription& d) {
   out += fmt::format("deep_water={}\nshallow_water={}\nbeach={}\nlowland={}\nhighland={}\ncliff={}\nsnow={}\n",
                      color(c.deepWater), color(c.shallowWater), color(c.beach), color(c.lowland), color(c.highland),
                      color(c.cliff), color(c.snow));
+  const MaterialDescription& m = d.materials;
+  out += fmt::format(
+      "materials.temperature_c={},{},{},{}\nmaterials.moisture={},{},{},{}\nmaterials.slopes_deg={},{}\n"
+      "materials.detail={},{}\n",
+      formatNumber(m.equatorTemperatureC), formatNumber(m.poleTemperatureDropC), formatNumber(m.lapseRateKPerKm),
+      formatNumber(m.snowTemperatureC), formatNumber(m.moisture), formatNumber(m.moistureNoise),
+      formatNumber(m.coastalHeightM), formatNumber(m.dryBelt), formatNumber(m.rockSlopeDeg),
+      formatNumber(m.snowSlopeDeg), formatNumber(m.detailRelief), formatNumber(m.detailContrast));
+  out += fmt::format("materials.colors={};{};{};{};{};{};{}\n", color(m.conifer), color(m.forest), color(m.grass),
+                     color(m.dryGrass), color(m.desert), color(m.tundra), color(m.scree));
   auto vector = [](const glm::dvec3& v) {
     return fmt::format("{},{},{}", formatNumber(v.x), formatNumber(v.y), formatNumber(v.z));
   };
@@ -428,13 +538,16 @@ std::string canonicalForm(const PlanetDescription& d) {
   out += fmt::format(
       "clouds={}\nclouds.bottom_m={}\nclouds.top_m={}\nclouds.coverage={}\nclouds.sharpness={}\n"
       "clouds.wavelength_m={}\nclouds.octaves={}\nclouds.seed={}\nclouds.wind_mps={}\nclouds.evolve_period_s={}\n"
-      "clouds.opacity={}\n",
+      "clouds.opacity={}\nclouds.climate={}\nclouds.cyclones={}\nclouds.cyclone_radius_m={}\nclouds.swirl={}\n"
+      "clouds.shear={}\nclouds.warp={}\nclouds.resolution={}\n",
       cl.enabled, formatNumber(cl.bottomM), formatNumber(cl.topM), formatNumber(cl.coverage),
       formatNumber(cl.sharpness), formatNumber(cl.wavelengthM), cl.octaves, cl.seed, formatNumber(cl.windMps),
-      formatNumber(cl.evolvePeriodS), formatNumber(cl.opacity));
-  out += fmt::format("water.clarity_m={}\nwater.wave_wavelength_m={}\nwater.wave_slope={}\n",
+      formatNumber(cl.evolvePeriodS), formatNumber(cl.opacity), formatNumber(cl.climate), cl.cyclones,
+      formatNumber(cl.cycloneRadiusM), formatNumber(cl.swirl), formatNumber(cl.shear), formatNumber(cl.warp),
+      cl.resolution);
+  out += fmt::format("water.clarity_m={}\nwater.wave_wavelength_m={}\nwater.wave_slope={}\nwater.wind_mps={}\n",
                      formatNumber(d.water.clarityM), formatNumber(d.water.waveWavelengthM),
-                     formatNumber(d.water.waveSlope));
+                     formatNumber(d.water.waveSlope), formatNumber(d.water.windMps));
   out += fmt::format("stars={}\nstars.seed={}\nstars.faintest_magnitude={}\nstars.brightness={}\n", d.stars.enabled,
                      d.stars.seed, formatNumber(d.stars.faintestMagnitude), formatNumber(d.stars.brightness));
   for (size_t i = 0; i < d.layers.size(); ++i) {

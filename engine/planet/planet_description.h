@@ -73,6 +73,32 @@ struct PlanetColors {
   glm::vec3 snow{0.0f};             // snow above the snow line and ice caps
 };
 
+// Ground materials from climate and terrain (issue 20; shaders/terrain_material.glsl): the earth
+// and mars schemes pick the material from temperature, moisture and slope; every scheme but
+// altitude and giant gets the per-pixel ground detail. Colours are linear RGB reflectances
+// (the preset names their source); rock is PlanetColors::cliff, sand ::beach, snow ::snow.
+struct MaterialDescription {
+  double equatorTemperatureC = 30.0;   // mean annual sea-level temperature at the equator
+  double poleTemperatureDropC = 45.0;  // sea-level temperature = equator − drop · sin²(latitude)
+  double lapseRateKPerKm = 6.5;        // temperature falls this much per km of height
+  double snowTemperatureC = -10.0;     // snow (frost) lies where the mean annual temperature is below this
+  double moisture = 0.55;              // mean moisture, 0 (desert) .. 1 (rainforest)
+  double moistureNoise = 0.6;          // how much the colour noise moves it
+  double coastalHeightM = 300.0;       // land below about this height is near the sea, so wetter
+  double dryBelt = 0.45;               // how much drier the subtropical belts (about 15–35°) are
+  double rockSlopeDeg = 40.0;          // bare rock on slopes steeper than this (scree just below)
+  double snowSlopeDeg = 50.0;          // snow does not hold on slopes steeper than this
+  double detailRelief = 1.0;           // slope scale of the ground detail below the vertex spacing (0: smooth)
+  double detailContrast = 1.0;         // albedo variation of the ground detail (0: none)
+  glm::vec3 conifer{0.0f};             // boreal forest canopy
+  glm::vec3 forest{0.0f};              // broadleaf forest canopy
+  glm::vec3 grass{0.0f};               // green grassland
+  glm::vec3 dryGrass{0.0f};            // steppe and savanna
+  glm::vec3 desert{0.0f};              // desert sand and soil
+  glm::vec3 tundra{0.0f};              // moss, lichen and dwarf shrubs
+  glm::vec3 scree{0.0f};               // loose rock below cliffs
+};
+
 // The sky of a planet (issue 4): optional tables of the preset. A table that is left out turns
 // its effect off (an airless moon has no [atmosphere], a dry one no ocean, and so on).
 
@@ -104,17 +130,26 @@ struct CloudDescription {
   double coverage = 0.3;             // 0: clear sky, 1: overcast
   double sharpness = 0.01;           // S: smaller gives denser, harder-edged clouds
   double wavelengthM = 3'000'000.0;  // largest weather systems
-  int octaves = 9;                   // of the fBm that forms the cover (finer ones come per pixel)
+  int octaves = 9;                   // of the fBm that forms the cover (the last ones reach its texels)
   uint32_t seed = 7;
   double windMps = 20.0;           // drift of the whole layer eastward
   double evolvePeriodS = 7'200.0;  // one cycle of the three-image cross-fade
   double opacity = 3.0;            // optical depth of a full-density column through the layer
+  // Weather (issue 20): what shapes the cover from orbit.
+  double climate = 1.0;                // 0 .. 2: strength of the latitude bands (ITCZ, dry subtropics, storm tracks)
+  int cyclones = 10;                   // 0 .. 48: cyclones per hemisphere (a fifth of them tropical)
+  double cycloneRadiusM = 900'000.0;   // e-folding radius of a mid-latitude cyclone's twist
+  double swirl = 0.6;                  // 0 .. 5: turns of a cyclone's spiral arms at its centre
+  double shear = 0.35;                 // 0 .. 3: longitude (rad) the zonal winds carry the cover at their peak
+  double warp = 0.05;                  // 0 .. 1: displacement of the domain warp (planet radii)
+  int resolution = 512;                // 64 .. 2048: texels per cube face side of the cover images
 };
 
 struct WaterDescription {
   double clarityM = 30.0;         // depth at which the sea floor has faded out of sight
   double waveWavelengthM = 40.0;  // largest ripples of the animated normal perturbation
   double waveSlope = 0.06;        // their steepness (0: a mirror)
+  double windMps = 7.0;           // wind 10 m above the sea: the glint's width (Cox–Munk slope variance)
 };
 
 // The starfield behind everything (engine/render/star_pass.h).
@@ -134,6 +169,7 @@ struct PlanetDescription {
   double baseHeightM = 0.0;        // constant added to the layer sum (moves the coastline)
   std::vector<NoiseLayer> layers;  // summed; at least one
   PlanetColors colors;
+  MaterialDescription materials;  // [materials]; its defaults are the scheme's (defaultMaterials)
   AtmosphereDescription atmosphere;
   CloudDescription clouds;
   WaterDescription water;  // used when hasOcean
@@ -157,6 +193,12 @@ inline constexpr Range kBeachHeightRangeM{0.0, 1e3};
 inline constexpr Range kSnowLineRangeM{-1e5, 1e5};
 inline constexpr Range kIceCapLatitudeRangeDeg{0.0, 90.0};
 inline constexpr Range kColorComponentRange{0.0, 1.0};
+inline constexpr Range kTemperatureRangeC{-273.0, 1000.0};
+inline constexpr Range kTemperatureDropRangeC{-500.0, 500.0};
+inline constexpr Range kLapseRangeKPerKm{-50.0, 50.0};
+inline constexpr Range kSlopeRangeDeg{0.0, 90.0};
+inline constexpr Range kMaterialKnobRange{0.0, 10.0};
+inline constexpr Range kCoastalHeightRangeM{0.0, 1e5};
 inline constexpr Range kAtmosphereHeightRangeM{1e3, 1e7};
 inline constexpr Range kScatteringRange{0.0, 1e-2};  // per metre
 inline constexpr Range kScaleHeightRangeM{10.0, 1e6};
@@ -171,9 +213,15 @@ inline constexpr Range kCloudOctavesRange{1.0, 16.0};
 inline constexpr Range kWindRangeMps{-1e3, 1e3};
 inline constexpr Range kEvolvePeriodRangeS{1.0, 1e9};
 inline constexpr Range kCloudOpacityRange{0.0, 100.0};
+inline constexpr Range kCloudClimateRange{0.0, 2.0};
+inline constexpr Range kCloudCyclonesRange{0.0, 48.0};
+inline constexpr Range kCloudSwirlRange{0.0, 5.0};
+inline constexpr Range kCloudShearRange{0.0, 3.0};
+inline constexpr Range kCloudResolutionRange{64.0, 2048.0};
 inline constexpr Range kClarityRangeM{0.1, 1e4};
 inline constexpr Range kWaveWavelengthRangeM{0.01, 1e4};
 inline constexpr Range kWaveSlopeRange{0.0, 1.0};
+inline constexpr Range kSeaWindRangeMps{0.0, 40.0};  // Cox & Munk measured up to ~14 m/s; beyond, extrapolated
 inline constexpr Range kMagnitudeRange{0.0, 9.0};
 inline constexpr Range kStarBrightnessRange{0.0, 1e3};
 inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
@@ -190,6 +238,8 @@ const char* colorSchemeName(ColorScheme scheme);
 ColorScheme parseColorScheme(std::string_view name);
 // The palette and bands a scheme uses when a preset leaves them out.
 PlanetColors defaultColors(ColorScheme scheme);
+// The climate, detail and biome palette a scheme uses when a preset leaves [materials] out.
+MaterialDescription defaultMaterials(ColorScheme scheme);
 
 // Parse a TOML document; `sourceName` starts every message ("earth.toml:12: ..."). Throws
 // planet::Error with a single-line message for any syntax error, unknown or missing key,

@@ -208,6 +208,28 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
   w.key("cliff", color(c.cliff));
   w.key("snow", color(c.snow));
 
+  const MaterialDescription& m = d.materials;
+  w.table("[materials]");
+  w.key("equator_temperature_c", m.equatorTemperatureC);
+  w.key("pole_temperature_drop_c", m.poleTemperatureDropC);
+  w.key("lapse_rate_k_per_km", m.lapseRateKPerKm);
+  w.key("snow_temperature_c", m.snowTemperatureC);
+  w.key("moisture", m.moisture);
+  w.key("moisture_noise", m.moistureNoise);
+  w.key("coastal_height_m", m.coastalHeightM);
+  w.key("dry_belt", m.dryBelt);
+  w.key("rock_slope_deg", m.rockSlopeDeg);
+  w.key("snow_slope_deg", m.snowSlopeDeg);
+  w.key("detail_relief", m.detailRelief);
+  w.key("detail_contrast", m.detailContrast);
+  w.key("conifer", color(m.conifer));
+  w.key("forest", color(m.forest));
+  w.key("grass", color(m.grass));
+  w.key("dry_grass", color(m.dryGrass));
+  w.key("desert", color(m.desert));
+  w.key("tundra", color(m.tundra));
+  w.key("scree", color(m.scree));
+
   const AtmosphereDescription& a = d.atmosphere;
   if (a.enabled) {
     w.table("[atmosphere]");
@@ -237,6 +259,13 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
     w.key("wind_mps", cl.windMps);
     w.key("evolve_period_s", cl.evolvePeriodS);
     w.key("opacity", cl.opacity);
+    w.key("climate", cl.climate);
+    w.integer("cyclones", cl.cyclones);
+    w.key("cyclone_radius_m", cl.cycloneRadiusM);
+    w.key("swirl", cl.swirl);
+    w.key("shear", cl.shear);
+    w.key("warp", cl.warp);
+    w.integer("resolution", cl.resolution);
   }
 
   if (d.hasOcean) {
@@ -244,6 +273,7 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
     w.key("clarity_m", d.water.clarityM);
     w.key("wave_wavelength_m", d.water.waveWavelengthM);
     w.key("wave_slope", d.water.waveSlope);
+    w.key("wind_mps", d.water.windMps);
   }
 
   w.table("[stars]");

@@ -10,10 +10,9 @@ namespace {
 
 constexpr uint32_t kOctaves = gpu::kNoiseMaxOctaves;
 
-// Splits `a` (octave units) into an integer vector whose coordinates sum to a multiple of 3
-// and a remainder in [0, 3) x [0, 1)^2, and returns the lattice shift of that integer vector:
-// skewing I adds (I.x + I.y + I.z) / 3 to every axis, so the shift is I + that sum / 3.
-void splitAnchor(const glm::dvec3& a, glm::vec4& remainder, glm::uvec4& shift) {
+}  // namespace
+
+void splitLatticeAnchor(const glm::dvec3& a, glm::vec4& remainder, glm::uvec4& shift) {
   int64_t ix = int64_t(std::floor(a.x));
   const int64_t iy = int64_t(std::floor(a.y));
   const int64_t iz = int64_t(std::floor(a.z));
@@ -22,12 +21,10 @@ void splitAnchor(const glm::dvec3& a, glm::vec4& remainder, glm::uvec4& shift) {
   ix -= excess;  // now (ix + iy + iz) is a multiple of 3 and a.x - ix is in [0, 3)
   sum -= excess;
   const int64_t m = sum / 3;
-  remainder = glm::vec4(float(a.x - double(ix)), float(a.y - double(iy)), float(a.z - double(iz)), 0.0f);
+  remainder = glm::vec4(float(a.x - double(ix)), float(a.y - double(iy)), float(a.z - double(iz)), remainder.w);
   // Unsigned wrap-around is intended: both hashes depend on the indices modulo 2^22 or 2^8.
   shift = glm::uvec4(uint32_t(uint64_t(ix + m)), uint32_t(uint64_t(iy + m)), uint32_t(uint64_t(iz + m)), 0u);
 }
-
-}  // namespace
 
 OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3& anchorM) {
   OctaveTables tables;
@@ -42,7 +39,7 @@ OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3
     double scale = layer.frequency;
     for (uint32_t i = 0; i < uint32_t(layer.noise.octaves); ++i, scale *= lacunarity) {
       glm::vec4& remainder = tables.remainders[l * kOctaves + i];
-      splitAnchor(anchorM * scale, remainder, tables.shifts[l * kOctaves + i]);
+      splitLatticeAnchor(anchorM * scale, remainder, tables.shifts[l * kOctaves + i]);
       remainder.w = float(scale);
     }
   }

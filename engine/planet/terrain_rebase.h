@@ -23,6 +23,13 @@ struct OctaveTables {
   std::vector<glm::uvec4> shifts;     // per layer, kNoiseMaxOctaves rows: lattice shift (xyz)
 };
 
+// Splits `a` (a point in octave units) into an integer vector whose coordinates sum to a multiple
+// of 3 and a remainder in [0, 3) x [0, 1)^2 (remainder.xyz; w untouched), and gives the simplex
+// lattice shift of that integer vector (shift.xyz): skewing adds the integer (I.x + I.y + I.z) / 3
+// to every axis, so the lattice moves exactly. Wraps modulo 2^32: both hashes depend on the indices
+// modulo 2^22 or 2^8.
+void splitLatticeAnchor(const glm::dvec3& a, glm::vec4& remainder, glm::uvec4& shift);
+
 // Tables for every layer of `planet` around `anchorM` (a point on the radius sphere).
 OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3& anchorM);
 

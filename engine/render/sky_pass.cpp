@@ -59,7 +59,8 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
     vk::writeImageDescriptor(context, set, gpu::kSkyBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              tables.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
     vk::writeImageDescriptor(context, set, gpu::kSkyBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             tables.clouds().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
+                             tables.clouds().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             tables.clouds().sampler());
   }
 }
 

@@ -14,6 +14,7 @@
 #include "planet/octave_budget.h"
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_height.h"
+#include "planet/terrain_rebase.h"
 #include "render/patch_textures.h"
 #include "render/relief_cube.h"
 #include "render/sky_tables.h"
@@ -50,6 +51,39 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
 constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
 
 glm::vec4 toVec4(const glm::vec3& v, float w = 0.0f) { return glm::vec4(v, w); }
+
+// The ground materials' uniforms (shaders/terrain_material.glsl) and the per-pixel ground noise's
+// octaves rebased at `anchorM` (the mesh's anchor, planet frame; shaders/terrain_detail.glsl):
+// the coarse ones continue the band noise's four octaves (bandWavelengthM / 2^(4 + 2i): a
+// lacunarity of 4, as fraying needs fewer of them than relief), the fine ones are 4 m / 3^i
+// (each octave costs every near pixel a noise evaluation: 3 covers 4 m .. 1.6 cm in 6).
+// As for the terrain's octave tables, anchor · frequency is split in double by splitLatticeAnchor
+// (planet/terrain_rebase.h); the shift is kept modulo 2^22, the fast hash's lattice period.
+void writeMaterials(gpu::FrameUniforms& u, const MaterialDescription& m, double bandWavelengthM,
+                    const glm::dvec3& anchorM) {
+  auto slope = [](double degrees) { return float(1.0 - std::cos(degrees * std::numbers::pi / 180.0)); };
+  u.climate = glm::vec4(float(m.equatorTemperatureC), float(m.poleTemperatureDropC), float(m.lapseRateKPerKm * 1e-3),
+                        float(m.snowTemperatureC));
+  u.moisture = glm::vec4(float(m.moisture), float(m.moistureNoise), float(m.coastalHeightM), float(m.dryBelt));
+  u.slopes = glm::vec4(slope(m.rockSlopeDeg), slope(m.snowSlopeDeg), float(m.detailRelief), float(m.detailContrast));
+  u.colorConifer = toVec4(m.conifer);
+  u.colorForest = toVec4(m.forest);
+  u.colorGrass = toVec4(m.grass);
+  u.colorDryGrass = toVec4(m.dryGrass);
+  u.colorDesert = toVec4(m.desert);
+  u.colorTundra = toVec4(m.tundra);
+  u.colorScree = toVec4(m.scree);
+  for (uint32_t i = 0; i < gpu::kGroundOctavesGpu; ++i) {
+    const double frequency = i < gpu::kGroundBiomeOctavesGpu
+                                 ? std::ldexp(16.0 / bandWavelengthM, int(2 * i))
+                                 : std::pow(3.0, double(i - gpu::kGroundBiomeOctavesGpu)) / 4.0;
+    u.groundOctaves[i].w = float(frequency);
+    glm::uvec4 shift;
+    splitLatticeAnchor(anchorM * frequency, u.groundOctaves[i], shift);
+    // Modulo 2^22 (kLatticeMask of shaders/common/noise.glsl), which a float holds exactly.
+    u.groundShifts[i] = glm::vec4(glm::vec3(shift & glm::uvec4(0x3fffffu)), 0.0f);
+  }
+}
 
 }  // namespace
 
@@ -92,6 +126,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   PatchSettings patchSettings = settings.patchSettings;
   if (!fullPatches_) patchSettings = PatchSettings{kPatchMinResolution, 1, 1.0, 2};  // bound, never sampled
   patches_ = std::make_unique<PatchTextures>(context, *data_, patchSettings);
+  // Without the relief a stand-in of kReliefStandInSize texels is bound, which the shaders skip.
+  relief_ = std::make_unique<ReliefCube>(context, *data_, settings.relief ? settings.reliefSize : kReliefStandInSize);
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkDeviceSize vertexCount = mesh_.vertexCount();
@@ -130,8 +166,6 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   surface_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
   normals_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
   attributes_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
-  // Without the relief a stand-in of kReliefStandInSize texels is bound, which the shaders skip.
-  relief_ = std::make_unique<ReliefCube>(context, *data_, settings.relief ? settings.reliefSize : kReliefStandInSize);
   // Per-frame data the CPU writes: host-visible, one copy per frame slot.
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     remainders_[slot] = {context,
@@ -160,6 +194,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
                              patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingRelief, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             relief_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, relief_->sampler());
   }
 
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
@@ -198,8 +234,6 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   desc.polygonMode = wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
   // The mesh's triangles are counter-clockwise seen from outside. The projection's y flip and
   // Vulkan's y-down framebuffer cancel, so they stay counter-clockwise on screen.
-    vk::writeImageDescriptor(context, set, gpu::kRenderBindingRelief, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             relief_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, relief_->sampler());
   desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   desc.cullMode = wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
   return vk::createGraphicsPipeline(context_, desc);
@@ -354,6 +388,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.colorHighland = toVec4(c.highland);
   u.colorCliff = toVec4(c.cliff);
   u.colorSnow = toVec4(c.snow);
+  writeMaterials(u, planet_.materials, settings_.bandWavelengthM, o.nadirDirection() * planet_.radiusM);
 
   const PatchLayout& layout = frame_.patchLayout;
   if (!layout.levels.empty()) {

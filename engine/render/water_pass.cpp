@@ -33,8 +33,11 @@ void WaterPass::recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const I
   if (timer) timer->end(cmd);
 }
 
+double coxMunkSlopeVariance(double windMps) { return 0.003 + 0.00512 * windMps; }
+
 glm::vec4 waterUniform(const WaterDescription& water, bool drawn) {
-  return glm::vec4(float(water.clarityM), float(water.waveWavelengthM), drawn ? 1.0f : 0.0f, 0.0f);
+  return glm::vec4(float(water.clarityM), float(water.waveWavelengthM), drawn ? 1.0f : 0.0f,
+                   float(coxMunkSlopeVariance(water.windMps)));
 }
 
 void writeWaves(glm::vec4 (&waves)[gpu::kWaterWaveCount], const WaterDescription& water, double radiusM, double refA,

@@ -1,8 +1,9 @@
 // The water pass (issue 4, point 1): the sea of a planet with an ocean, the clipmap mesh drawn
 // again at sea level (shaders/water.vert) right after the ground, so that the coastline is the
 // intersection of two surfaces over the same triangles. Shading (shaders/water.frag): Fresnel
-// reflection of the sky, the sun's glint off small animated waves, light scattered up from the
-// water body, and transparency from the depth under the pixel; blended premultiplied "over" the
+// reflection of the sky, the sun's glint off a sea as rough as the wind makes it (Cox & Munk
+// 1954) with small animated waves resolved near the camera, light scattered up from the water
+// body, and transparency from the depth under the pixel; blended premultiplied "over" the
 // ground, depth tested and written. It reads the terrain pass's descriptor set (frame uniforms,
 // the vertex buffers the height pass fills, the patch textures), so the terrain pass owns it.
 #pragma once
@@ -41,8 +42,13 @@ class WaterPass {
   vk::Owned<VkPipeline> pipeline_;
 };
 
+// Cox & Munk (1954), from photographs of the sun's glitter: the total mean square slope of the
+// sea surface (sum of the up- and cross-wind variances) in a wind of windMps at 10 m,
+// 0.003 + 0.00512·U (their clean-surface fit; measured up to ~14 m/s, a straight line beyond).
+double coxMunkSlopeVariance(double windMps);
+
 // The water's values in the terrain pass's frame uniforms, for every planet (the ground's shader
-// reads whether the sea is drawn): FrameUniforms::water.
+// reads whether the sea is drawn): FrameUniforms::water, w the Cox–Munk slope variance.
 glm::vec4 waterUniform(const WaterDescription& water, bool drawn);
 // FrameUniforms::waves: deep-water waves (ω² = g k) of falling wavelength in four directions,
 // with their phase at the patch reference point (face coordinates refA, refB) computed in double

@@ -36,6 +36,11 @@ GPU_CONST uint kRenderBindingCount = 13u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
+// Per-pixel ground noise (shaders/terrain_detail.glsl): the first kGroundBiomeOctavesGpu octaves
+// (wavelengths 2,500 m / 4^i: 2,500 and 625 m) fray the materials' edges, the rest (4 m / 3^i:
+// 4 m .. 1.6 cm) are the ground's detail (and fray the edges further).
+GPU_CONST uint kGroundOctavesGpu = 8u;
+GPU_CONST uint kGroundBiomeOctavesGpu = 2u;
 
 // Octaves of every layer at one ring's vertex spacing (engine/planet/octave_budget.h).
 struct RingBudget {
@@ -53,7 +58,8 @@ struct FrameUniforms {
   vec4 shading;   // x: sin(ice cap latitude), y: colour scheme, z: wireframe (1/0), w: ambient (fraction of the sun's
                   // irradiance; airless bodies)
   vec4 sunLocal;  // xyz: unit direction toward the sun (local frame), w: sun irradiance
-  vec4 water;     // x: clarity depth (m), y: largest wave wavelength (m), z: 1 if the water pass draws, w: unused
+  vec4 water;     // x: clarity depth (m), y: largest wave wavelength (m), z: 1 if the water pass draws, w: Cox–Munk
+                  // total mean square wave slope from the preset's wind (coxMunkSlopeVariance, water_pass.h)
   vec4 colorDeepWater;  // rgb linear; w unused
   vec4 colorShallowWater;
   vec4 colorBeach;
@@ -80,8 +86,25 @@ struct FrameUniforms {
   vec4 waves[kWaterWaveCount];
   vec4 cameraPlanet;  // xyz: the camera in the planet frame (m, float: ring shadows only), w: 1 if the body has rings
   RingParams ring;    // the body's rings, which shadow its surface (shaders/common/rings.glsl ringShadow)
+  // Ground materials (shaders/terrain_material.glsl, PlanetDescription::materials).
+  vec4 climate;   // x: sea-level mean temperature at the equator (°C), y: its drop to the poles (°C, × sin² latitude),
+                  // z: lapse rate (K/m), w: mean annual temperature below which snow or frost lies (°C)
+  vec4 moisture;  // x: mean moisture (0 desert .. 1 rainforest), y: noise amplitude, z: coastal height (m),
+                  // w: dryness of the subtropical belts
+  vec4 slopes;    // x: slope (1 − cos) where bare rock begins, y: steepest slope snow holds on,
+                  // z: detail relief (slope scale), w: detail albedo contrast
+  vec4 colorConifer;  // rgb linear reflectance; w unused
+  vec4 colorForest;
+  vec4 colorGrass;
+  vec4 colorDryGrass;
+  vec4 colorDesert;
+  vec4 colorTundra;
+  vec4 colorScree;
+  // The ground noise's octaves rebased at the anchor (DESIGN.md precision rule; terrain_detail.glsl):
+  vec4 groundOctaves[kGroundOctavesGpu];  // xyz: anchor · frequency minus the shift (cells), w: frequency (1/m)
+  vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
 };
-GPU_ASSERT_SIZE(FrameUniforms, 1392)
+GPU_ASSERT_SIZE(FrameUniforms, 1808)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

@@ -22,6 +22,29 @@ GPU_CONST uint kSkyBindingDepth = 2u;          // sampler2D: the frame's reverse
 GPU_CONST uint kSkyBindingTransmittance = 3u;  // sampler2D: the transmittance table
 GPU_CONST uint kSkyBindingClouds = 4u;         // samplerCube: the three cloud cover images (rgb)
 
+// The weather that shapes the cloud cover (shaders/clouds_cover.comp), one storage buffer
+// written once per planet by engine/render/cloud_cover.cpp.
+GPU_CONST uint kCloudMaxVortices = 96u;
+GPU_CONST uint kCloudSharedOctaves = 4u;  // the cover's largest octaves, the same in all three images
+
+struct CloudVortex {
+  vec4 centre;  // xyz: unit direction (planet frame), w: angular radius (rad)
+  vec4 shape;   // x: twist at the centre (rad; > 0 turns counter-clockwise seen from above), y: cover added at the
+                // centre, z: clear eye radius (fraction of the radius; 0: none), w: unused
+};
+GPU_ASSERT_SIZE(CloudVortex, 32)
+
+struct CloudWeather {
+  vec4 shape;  // x: radius / wavelength (noise units per unit direction), y: face size (texels), z: seed (uint bits),
+               // w: 1 / Σ octave weights
+  vec4 cover;  // x: coverage, y: ln(1 / sharpness), z: climate strength, w: vortex count
+  vec4 flow;   // x: zonal shear (rad of longitude at the jets' peak), y: warp (unit-sphere distance), z: jet meander
+               // (rad of latitude), w: warp frequency (per unit direction)
+  vec4 pad;
+  CloudVortex vortices[kCloudMaxVortices];
+};
+GPU_ASSERT_SIZE(CloudWeather, 64 + 32 * 96)
+
 // Sun irradiance at the top of the atmosphere, in the renderer's HDR units (the tonemap's
 // exposure maps a sunlit ground of albedo ~0.2 to the middle of the display range).
 GPU_CONST float kSunIrradiance = 1.0f;
@@ -45,9 +68,10 @@ struct SkyUniforms {
   vec4 forward;        // xyz: camera forward (local), w: view samples per pixel
   vec4 sunLocal;       // xyz: toward the sun (local), w: star brightness
   vec4 cameraPlanet;   // xyz: camera position in the planet frame (m, float: clouds only), w: 1 if clouds
-  vec4 clouds;         // x: bottom (m above R), y: top, z: coverage, w: sharpness
-  vec4 cloudShape;     // x: optical depth of a full column, y: detail frequency (1/m), z: detail amount, w: seed mix of
-                       // the detail noise (as uint bits)
+  vec4 clouds;         // x: bottom (m above R), y: top, z: extinction of full density (1/m), w: cloud width over
+                       // the layer's thickness (caps slant paths through a cloud)
+  vec4 cloudShape;     // x: angle of a level-0 cover texel (rad), y: the cover's last mip level, z: most samples per
+                       // crossing of the layer, w: unused
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
   vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc
@@ -57,9 +81,6 @@ struct SkyUniforms {
 };
 GPU_ASSERT_SIZE(SkyUniforms, 624)
 
-GPU_NAMESPACE_END
-
-#endif
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
 // unit sun irradiance, the isotropic phase included), a = the transfer f_ms of the green channel.
@@ -78,3 +99,6 @@ struct SkyRayPush {
 };
 GPU_ASSERT_SIZE(SkyRayPush, 112)
 
+GPU_NAMESPACE_END
+
+#endif

@@ -219,6 +219,7 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
       for (ColorScheme scheme : kSchemes)
         if (ImGui::Selectable(colorSchemeName(scheme), scheme == c.scheme) && scheme != c.scheme) {
           c = defaultColors(scheme);
+          s.planet.materials = defaultMaterials(scheme);
           r.rebuild = true;
         }
       ImGui::EndCombo();
@@ -233,6 +234,34 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.rebuild |= editColor("beach", c.beach);
     r.rebuild |= editColor("shallow water", c.shallowWater);
     r.rebuild |= editColor("deep water", c.deepWater);
+    // The sea's roughness (Cox & Munk): a stronger wind spreads the sun's glint wider and dimmer.
+    if (s.planet.hasOcean)
+      r.rebuild |=
+          editDouble("sea wind", s.planet.water.windMps, kSeaWindRangeMps.min, kSeaWindRangeMps.max, "%.1f m/s");
+  }
+  if (ImGui::CollapsingHeader("Materials")) {
+    // The climate that picks the ground's material (earth and mars schemes) and the per-pixel
+    // ground detail (every scheme but altitude and giant): shaders/terrain_material.glsl.
+    MaterialDescription& m = s.planet.materials;
+    r.rebuild |= editDouble("equator (sea level)", m.equatorTemperatureC, -150.0, 60.0, "%.1f C");
+    r.rebuild |= editDouble("pole drop", m.poleTemperatureDropC, 0.0, 150.0, "%.1f C");
+    r.rebuild |= editDouble("lapse rate", m.lapseRateKPerKm, 0.0, 12.0, "%.2f K/km");
+    r.rebuild |= editDouble("snow below", m.snowTemperatureC, -150.0, 10.0, "%.1f C");
+    r.rebuild |= editDouble("moisture", m.moisture, 0.0, 1.0, "%.2f");
+    r.rebuild |= editDouble("moisture noise", m.moistureNoise, 0.0, 3.0, "%.2f");
+    r.rebuild |= editDouble("coastal height", m.coastalHeightM, 0.0, 3000.0, "%.0f m");
+    r.rebuild |= editDouble("dry belts", m.dryBelt, 0.0, 2.0, "%.2f");
+    r.rebuild |= editDouble("rock from slope", m.rockSlopeDeg, 5.0, 89.0, "%.0f deg");
+    r.rebuild |= editDouble("snow up to slope", m.snowSlopeDeg, 5.0, 89.0, "%.0f deg");
+    r.rebuild |= editDouble("detail relief", m.detailRelief, 0.0, 3.0, "%.2f");
+    r.rebuild |= editDouble("detail contrast", m.detailContrast, 0.0, 3.0, "%.2f");
+    r.rebuild |= editColor("conifer", m.conifer);
+    r.rebuild |= editColor("forest", m.forest);
+    r.rebuild |= editColor("grass", m.grass);
+    r.rebuild |= editColor("dry grass", m.dryGrass);
+    r.rebuild |= editColor("desert", m.desert);
+    r.rebuild |= editColor("tundra", m.tundra);
+    r.rebuild |= editColor("scree", m.scree);
   }
   if (ImGui::CollapsingHeader("Atmosphere")) {
     AtmosphereDescription& a = s.planet.atmosphere;
@@ -253,6 +282,11 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.rebuild |= editDouble("Mie g", a.mieG, 0.0, 0.95, "%.2f");
     CloudDescription& cl = s.planet.clouds;
     r.rebuild |= editDouble("cloud cover", cl.coverage, 0.0, 1.0, "%.2f");
+    r.rebuild |= editDouble("cloud climate bands", cl.climate, 0.0, 2.0, "%.2f");
+    r.rebuild |= editDouble("cyclone swirl", cl.swirl, 0.0, 5.0, "%.2f turns");
+    r.rebuild |= editDouble("wind shear", cl.shear, 0.0, 3.0, "%.2f rad");
+    r.rebuild |= editDouble("cloud warp", cl.warp, 0.0, 1.0, "%.3f");
+    r.rebuild |= editDouble("cloud opacity", cl.opacity, 0.0, 100.0, "%.0f");
   }
   if (ImGui::CollapsingHeader("Go to and presets", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::InputFloat3("lat, lon, alt m", goTo_, "%.5g");
