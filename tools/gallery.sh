@@ -5,7 +5,8 @@
 #   - a descent on the default planet: orbit -> 100 km -> 10 km -> 1 km -> 2 m, at noon, at
 #     sunset and at night (sky, clouds, water and stars: issue 4), the first four beside the same
 #     views of the earth preset before issue 10;
-#   - the moon and mars presets from the ground, the moon from orbit.
+#   - the moon and mars presets from the ground, the moon from orbit;
+#   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size).
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
 out=${1:-docs/gallery}
@@ -53,4 +54,23 @@ render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,
 render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
 render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
 render system_giant --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 20
+# Issue 11's matrix: earth, mars and the moon from orbit (8,000 km), 400 km, 10 km, 1 km and
+# 2 m above the ground below, at noon (sun 60° up) and at low sun (5°), at half size, for
+# comparison with photographs
+# (docs/gallery/matrix_BODY_ALTITUDE_SUN.png).
+matrix_size=$(echo "$size" | awk -Fx '{ printf "%dx%d", $1 / 2, $2 / 2 }')
+for body in earth:45.3,83.0 mars:-5,140 moon:-20,40; do
+  preset=${body%%:*}; at=${body#*:}
+  ground=$("$planet" height --preset "$preset" --at "$at")
+  for view in orbit:8e6,0,-90 400km:4e5,90,-40 10km:1e4,90,-12 1km:1000,90,-15 2m:2,90,-5; do
+    name=${view%%:*}; camera=${view#*:}
+    above=${camera%%,*}
+    camera=$(awk -v g="$ground" -v a="$above" 'BEGIN { printf "%.1f", g + a }'),${camera#*,}
+    for sun in noon:150,60 low:270,5; do
+      echo "gallery: $out/matrix_${preset}_${name}_${sun%%:*}.png"
+      "$planet" render --size "$matrix_size" --preset "$preset" --camera "$at,$camera" --sun "${sun#*:}" \
+        --out "$out/matrix_${preset}_${name}_${sun%%:*}.png" > /dev/null
+    done
+  done
+done
 echo "gallery: done ($out)"
