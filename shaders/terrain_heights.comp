@@ -36,7 +36,7 @@ void main() {
   vec4 heightGradient = surfaceHeightGradient(offsetPlanet, floatBitsToUint(v.polar.z));
   vec4 surfaceValue = vec4(offsetLocal, heightGradient.x);
   vec4 normalValue = vec4(surfaceNormal(heightGradient, v.direction.xyz), 0.0f);
-  vec4 attributeValue = surfaceAttributes(offsetPlanet);
+  vec4 attributeValue = surfaceAttributes(offsetPlanet, v);
   if (inRange) {
     surface[index] = surfaceValue;
     normals[index] = normalValue;

@@ -29,7 +29,7 @@ void main() {
   gl_Position = frame.viewProjection * vec4(position, 1.0f);
   outNormal = surfaceNormal(heightGradient, up);
   outUp = up;
-  outAttributes = surfaceAttributes(offsetPlanet);
+  outAttributes = surfaceAttributes(offsetPlanet, v);
   outHeight = height;
   outToCamera = -position;
 }

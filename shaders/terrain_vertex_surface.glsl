@@ -108,10 +108,14 @@ vec3 surfaceNormal(vec4 heightGradient, vec3 up) {
   return normalize(normal);
 }
 
-// Shading attributes at `offsetPlanet` (common/surface_attributes.glsl).
-vec4 surfaceAttributes(vec3 offsetPlanet) {
-  return terrainSurfaceAttributes(offsetPlanet, frame.camera.y, frame.localToPlanet[2].xyz, frame.refMinusNadir.xyz,
-                                  frame.faceNormal, frame.faceAxisA, frame.faceAxisB, push.bandFrequency);
+// Shading attributes at `offsetPlanet` of mesh vertex v (common/surface_attributes.glsl). The
+// vertex spacing is its ring's circumference over the vertices per ring (CPU: the same).
+vec4 surfaceAttributes(vec3 offsetPlanet, MeshVertex v) {
+  float radius = frame.camera.y;
+  float spacing = radius * sin(v.polar.x) * (6.2831853f / float(push.numPhi));
+  return terrainSurfaceAttributes(offsetPlanet, radius, frame.localToPlanet[2].xyz, frame.refMinusNadir.xyz,
+                                  frame.faceNormal, frame.faceAxisA, frame.faceAxisB, push.bandFrequency, spacing,
+                                  push.regionalWeight);
 }
 
 #endif

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "gpu_fixture.h"
+#include "noise/noise_kernel.h"
 #include "planet/planet_description.h"
 #include "planet/terrain_height.h"
 #include "render/renderer.h"
@@ -221,6 +222,35 @@ TEST(GroundMaterial, MaterialsTableIsOptionalAndChecked) {
   EXPECT_THROW(parsePlanetDescription(base + "[materials]\nrock_slope_deg = 95\n", "t.toml"), Error);
   // Mars has its own climate: frost only near the poles.
   EXPECT_LT(defaultMaterials(ColorScheme::Mars).snowTemperatureC, -100.0);
+}
+
+// The colour noise keeps only the octaves a vertex spacing can show (wavelength at least twice
+// the spacing): vertices 100 km apart from orbit sampled the 40 km octaves into blotches a few
+// hundred km wide that swam as the camera moved. It changes continuously with the spacing, and
+// the regional octaves (2,560-640 km) are there at every spacing.
+TEST(GroundMaterial, ColourNoiseKeepsOnlyTheOctavesTheVertexSpacingShows) {
+  const float radius = 6.371e6f, frequency = 1.0f / 40000.0f;
+  const glm::vec4 face(0.0f, 0.0f, 1.0f, 1.0f);
+  auto noise = [&](glm::vec3 offset, float spacing, float regional) {
+    return noise::NoiseKernel<float>()
+        .terrainSurfaceAttributes(offset, radius, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f), face,
+                                  glm::vec4(1.0f, 0.0f, 0.0f, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 0.0f), frequency,
+                                  spacing, regional)
+        .z;
+  };
+  double fine = 0.0, coarse = 0.0, jump = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const glm::vec3 offset(12345.0f * float(i), -7770.0f * float(i % 17), 0.0f);
+    fine = std::max(fine, double(std::abs(noise(offset, 1000.0f, 0.0f))));
+    // Spacings of 20 km and more: no band octave of wavelength 40 km or less is kept.
+    EXPECT_EQ(noise(offset, 20000.0f, 0.0f), 0.0f);
+    coarse = std::max(coarse, double(std::abs(noise(offset, 100000.0f, 0.5f))));
+    for (float spacing : {5000.0f, 7000.0f, 10000.0f, 15000.0f})
+      jump = std::max(jump, double(std::abs(noise(offset, spacing * 1.001f, 0.0f) - noise(offset, spacing, 0.0f))));
+  }
+  EXPECT_GT(fine, 0.3) << "the band noise is there where the vertices resolve it";
+  EXPECT_GT(coarse, 0.05) << "the regional noise is there at any spacing";
+  EXPECT_LT(jump, 0.01) << "no pop where an octave comes or goes";
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ constexpr std::string_view kTopKeys[] = {"planet",     "colors", "materials", "l
 constexpr std::string_view kMaterialKeys[] = {
     "equator_temperature_c", "pole_temperature_drop_c", "lapse_rate_k_per_km", "snow_temperature_c",
     "moisture",              "moisture_noise",          "coastal_height_m",    "dry_belt",
+    "regional_noise",
     "rock_slope_deg",        "snow_slope_deg",          "detail_relief",       "detail_contrast",
     "conifer",               "forest",                  "grass",               "dry_grass",
     "desert",                "tundra",                  "scree"};
@@ -115,6 +116,7 @@ MaterialDescription readMaterials(const Context& context, const toml::table& tab
       {"snow_temperature_c", &MaterialDescription::snowTemperatureC, kTemperatureRangeC},
       {"moisture", &MaterialDescription::moisture, kUnitRange},
       {"moisture_noise", &MaterialDescription::moistureNoise, kMaterialKnobRange},
+      {"regional_noise", &MaterialDescription::regionalNoise, kMaterialKnobRange},
       {"coastal_height_m", &MaterialDescription::coastalHeightM, kCoastalHeightRangeM},
       {"dry_belt", &MaterialDescription::dryBelt, kMaterialKnobRange},
       {"rock_slope_deg", &MaterialDescription::rockSlopeDeg, kSlopeRangeDeg},
@@ -463,6 +465,7 @@ MaterialDescription defaultMaterials(ColorScheme scheme) {
   m.desert = {0.420f, 0.300f, 0.160f};
   m.tundra = {0.110f, 0.110f, 0.070f};
   m.scree = {0.240f, 0.220f, 0.200f};
+  m.regionalNoise = 0.5;
   switch (scheme) {
     case ColorScheme::Mars:
       // Mean annual surface temperatures of the Mars Climate Database: about −50 °C at the
@@ -473,6 +476,7 @@ MaterialDescription defaultMaterials(ColorScheme scheme) {
       m.snowTemperatureC = -122.0;
       m.moisture = 0.0;
       m.moistureNoise = 0.0;
+      m.regionalNoise = 0.6;
       m.dryBelt = 0.0;
       m.rockSlopeDeg = 35.0;
       m.scree = {0.220f, 0.110f, 0.060f};
@@ -484,6 +488,7 @@ MaterialDescription defaultMaterials(ColorScheme scheme) {
       m.snowTemperatureC = -273.0;  // no frost in the sunlit regolith
       m.moisture = 0.0;
       m.moistureNoise = 0.0;
+      m.regionalNoise = 0.3;
       m.dryBelt = 0.0;
       m.rockSlopeDeg = 35.0;
       m.scree = {0.140f, 0.135f, 0.130f};
@@ -512,11 +517,13 @@ std::string canonicalForm(const PlanetDescription& d) {
                      color(c.cliff), color(c.snow));
   const MaterialDescription& m = d.materials;
   out += fmt::format(
-      "materials.temperature_c={},{},{},{}\nmaterials.moisture={},{},{},{}\nmaterials.slopes_deg={},{}\n"
+      "materials.temperature_c={},{},{},{}\nmaterials.moisture={},{},{},{}\nmaterials.regional_noise={}\n"
+      "materials.slopes_deg={},{}\n"
       "materials.detail={},{}\n",
       formatNumber(m.equatorTemperatureC), formatNumber(m.poleTemperatureDropC), formatNumber(m.lapseRateKPerKm),
       formatNumber(m.snowTemperatureC), formatNumber(m.moisture), formatNumber(m.moistureNoise),
-      formatNumber(m.coastalHeightM), formatNumber(m.dryBelt), formatNumber(m.rockSlopeDeg),
+      formatNumber(m.coastalHeightM), formatNumber(m.dryBelt), formatNumber(m.regionalNoise),
+      formatNumber(m.rockSlopeDeg),
       formatNumber(m.snowSlopeDeg), formatNumber(m.detailRelief), formatNumber(m.detailContrast));
   out += fmt::format("materials.colors={};{};{};{};{};{};{}\n", color(m.conifer), color(m.forest), color(m.grass),
                      color(m.dryGrass), color(m.desert), color(m.tundra), color(m.scree));

@@ -84,6 +84,7 @@ struct MaterialDescription {
   double snowTemperatureC = -10.0;     // snow (frost) lies where the mean annual temperature is below this
   double moisture = 0.55;              // mean moisture, 0 (desert) .. 1 (rainforest)
   double moistureNoise = 0.6;          // how much the colour noise moves it
+  double regionalNoise = 0.0;          // weight of continent-scale octaves in the colour noise (regions)
   double coastalHeightM = 300.0;       // land below about this height is near the sea, so wetter
   double dryBelt = 0.45;               // how much drier the subtropical belts (about 15–35°) are
   double rockSlopeDeg = 40.0;          // bare rock on slopes steeper than this (scree just below)

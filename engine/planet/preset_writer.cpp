@@ -216,6 +216,7 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
   w.key("snow_temperature_c", m.snowTemperatureC);
   w.key("moisture", m.moisture);
   w.key("moisture_noise", m.moistureNoise);
+  w.key("regional_noise", m.regionalNoise);
   w.key("coastal_height_m", m.coastalHeightM);
   w.key("dry_belt", m.dryBelt);
   w.key("rock_slope_deg", m.rockSlopeDeg);

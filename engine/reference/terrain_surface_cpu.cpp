@@ -15,11 +15,13 @@ namespace planet {
 namespace {
 
 // common/surface_attributes.glsl, as terrain_vertex_surface.glsl calls it.
-glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPlanet) {
+glm::vec4 surfaceAttributes(const CpuSurfaceJob& job, const glm::vec3& offsetPlanet, const ClipmapVertex& v) {
   const gpu::FrameUniforms& frame = *job.frame;
+  const float radius = frame.camera.y;
+  const float spacing = radius * std::sin(v.theta) * (6.2831853f / float(job.mesh->params.numPhi));
   return noise::NoiseKernel<float>().terrainSurfaceAttributes(
-      offsetPlanet, frame.camera.y, glm::vec3(frame.localToPlanet[2]), glm::vec3(frame.refMinusNadir), frame.faceNormal,
-      frame.faceAxisA, frame.faceAxisB, job.bandFrequency);
+      offsetPlanet, radius, glm::vec3(frame.localToPlanet[2]), glm::vec3(frame.refMinusNadir), frame.faceNormal,
+      frame.faceAxisA, frame.faceAxisB, job.bandFrequency, spacing, job.regionalWeight);
 }
 
 // The height and its gradient at offsetM (terrainHeightRebased's evaluation, with the gradient).
@@ -45,7 +47,7 @@ void computeVertex(const CpuSurfaceJob& job, uint32_t index, glm::vec4* surface,
   surface[index] = glm::vec4(offsetLocal, h.x);
   normals[index] = glm::vec4(
       surfaceNormalCpu(h, glm::vec3(v.direction), glm::mat3(job.frame->localToPlanet), job.frame->camera.y), 0.0f);
-  attributes[index] = surfaceAttributes(job, offsetPlanet);
+  attributes[index] = surfaceAttributes(job, offsetPlanet, v);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ struct CpuSurfaceJob {
   const gpu::FrameUniforms* frame = nullptr;  // the uniforms the shaders see this frame
   std::span<const double> ringSpacingM;       // per ring and the pole (0: every octave), as the RingBudgets
   float bandFrequency = 0.0f;                 // cycles per metre of the colour-band noise
+  float regionalWeight = 0.0f;                // weight of its regional octaves (MaterialDescription::regionalNoise)
   uint32_t firstVertex = 0;                   // vertices firstVertex .. firstVertex + vertexCount − 1, and the pole
   uint32_t vertexCount = 0;
 };

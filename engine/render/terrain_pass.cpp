@@ -432,6 +432,7 @@ gpu::TerrainComputePush TerrainPass::heightPush() const {
   push.baseHeightM = float(planet_.baseHeightM);
   push.heightScale = float(planet_.heightScale);
   push.bandFrequency = float(1.0 / settings_.bandWavelengthM);
+  push.regionalWeight = float(planet_.materials.regionalNoise);
   push.firstRing = frame_.heightFirstRing;
   push.lastRing = frame_.heightLastRing;
   push.poleNeighbourRing = frame_.rings.lastRing;
@@ -446,6 +447,7 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
   job.frame = &uniformData_;
   job.ringSpacingM = ringSpacings_;
   job.bandFrequency = float(1.0 / settings_.bandWavelengthM);
+  job.regionalWeight = float(planet_.materials.regionalNoise);
   job.firstVertex = firstVertex;
   job.vertexCount = vertexCount;
   const VkDeviceSize vertices = mesh_.vertexCount();

@@ -21,32 +21,68 @@ vec2 patchFaceOffset(vec3 delta, vec4 faceNormal, vec4 faceAxisA, vec4 faceAxisB
   return vec2(da, db) / denominator;
 }
 
-// Shading attributes at `offsetPlanet` (planet frame, metres from the nadir point of a sphere
-// of `radius`): face Δa, Δb of the patch textures, colour noise, sin(latitude) (the layout of
-// kRenderBindingAttributes). `nadir` is the nadir direction and `refMinusNadir` the patch
-// reference point minus it (unit sphere, planet frame).
-vec4 terrainSurfaceAttributes(vec3 offsetPlanet, real radius, vec3 nadir, vec3 refMinusNadir, vec4 faceNormal,
-                              vec4 faceAxisA, vec4 faceAxisB, real bandFrequency) {
-  // Planet-frame direction, good to float precision (colour and latitude only).
-  vec3 directionPlanet = nadir + offsetPlanet / radius;
-  // Colour noise: four fBm octaves from bandWavelengthM down (tens of km to a few km). It frays
-  // the colour-band edges and picks the vegetation (terrain.frag); float is enough here.
+// Octaves of the colour noise a vertex spacing can show: those of wavelength at least twice
+// the spacing, the last faded in as its wavelength goes from two to four spacings (the octave
+// budgets' rule, octave_budget.h), so that vertices far apart do not alias the noise into blobs
+// hundreds of km wide from orbit, and the value changes continuously as a point's spacing does.
+// Returns the octave count; lastWeight gets the last one's weight.
+uint bandOctavesAt(real wavelength, real spacing, uint most, OUT(real) lastWeight) {
+  uint octaves = 0u;
+  lastWeight = real(1.0f);
+  for (uint i = 0u; i < most; ++i) {
+    real ratio = wavelength / (real(2.0f) * spacing);
+    if (ratio < real(1.0f)) break;
+    lastWeight = min(ratio - real(1.0f), real(1.0f));
+    octaves = i + 1u;
+    wavelength = wavelength * real(0.5f);
+  }
+  return octaves;
+}
+
+// fBm of the colour noise: `octaves` octaves at `frequency` (cycles per metre) and up, the
+// last weighted by lastWeight; each has its own seed.
+real colourNoise(vec3 pointM, real frequency, uint octaves, real lastWeight, uint seedMix) {
+  if (octaves == 0u) return real(0.0f);
   NoiseParams band;
   band.type = kNoiseFbm;
-  band.octaves = 4u;
+  band.octaves = octaves;
   band.hash = kNoiseHashFast;
-  band.seedMix = 0x5bd1e995u;
+  band.seedMix = seedMix;
   band.lacunarity = 2.0f;
   band.octaveWeight = 0.5f;
   band.offset = 0.0f;
   band.gain = 0.0f;
   band.count = 0u;
   band.firstIndex = 0u;
-  band.lastOctaveWeight = 1.0f;
+  band.lastOctaveWeight = float(lastWeight);
   band.pad2 = 0u;
-  real bandNoise = evaluateFbm(band, directionPlanet * (radius * bandFrequency));
+  return evaluateFbm(band, pointM * frequency);
+}
+
+// Shading attributes at `offsetPlanet` (planet frame, metres from the nadir point of a sphere
+// of `radius`): face Δa, Δb of the patch textures, colour noise, sin(latitude) (the layout of
+// kRenderBindingAttributes). `nadir` is the nadir direction and `refMinusNadir` the patch
+// reference point minus it (unit sphere, planet frame). spacingM is the vertex's spacing (the
+// colour noise keeps the octaves it can show); regionalWeight the weight of the regional noise.
+vec4 terrainSurfaceAttributes(vec3 offsetPlanet, real radius, vec3 nadir, vec3 refMinusNadir, vec4 faceNormal,
+                              vec4 faceAxisA, vec4 faceAxisB, real bandFrequency, real spacingM,
+                              real regionalWeight) {
+  // Planet-frame direction, good to float precision (colour and latitude only).
+  vec3 directionPlanet = nadir + offsetPlanet / radius;
+  vec3 pointM = directionPlanet * radius;
+  // Colour noise: four fBm octaves from bandWavelengthM down (tens of km to a few km), as many
+  // as the spacing shows. It frays the colour-band edges and picks the vegetation
+  // (terrain.frag); float is enough here.
+  real lastWeight;
+  uint octaves = bandOctavesAt(real(1.0f) / bandFrequency, spacingM, 4u, lastWeight);
+  real noise = colourNoise(pointM, bandFrequency, octaves, lastWeight, 0x5bd1e995u);
+  // Regional noise: three octaves from 64 band wavelengths (2,560 km on Earth down to 640 km,
+  // finer than any vertex spacing), so that the materials vary by region (wet and dry, warm and
+  // cold, dark and bright) and not only by latitude and height.
+  if (regionalWeight > real(0.0f))
+    noise = noise + regionalWeight * colourNoise(pointM, bandFrequency * real(0.015625f), 3u, real(1.0f), 0x2f6b8a13u);
   vec2 face = patchFaceOffset(offsetPlanet / radius - refMinusNadir, faceNormal, faceAxisA, faceAxisB);
-  return vec4(face.x, face.y, bandNoise, normalize(directionPlanet).z);
+  return vec4(face.x, face.y, noise, normalize(directionPlanet).z);
 }
 
 #endif

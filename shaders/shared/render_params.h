@@ -118,8 +118,8 @@ struct TerrainComputePush {
   uint poleNeighbourRing;  // unused likewise
   float baseHeightM;
   float heightScale;
-  float bandFrequency;  // cycles per metre of the colour-band noise
-  float pad0;
+  float bandFrequency;   // cycles per metre of the colour-band noise
+  float regionalWeight;  // weight of the regional colour noise (MaterialDescription::regionalNoise)
 };
 GPU_ASSERT_SIZE(TerrainComputePush, 48)
 

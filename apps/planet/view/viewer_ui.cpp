@@ -249,6 +249,7 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.rebuild |= editDouble("snow below", m.snowTemperatureC, -150.0, 10.0, "%.1f C");
     r.rebuild |= editDouble("moisture", m.moisture, 0.0, 1.0, "%.2f");
     r.rebuild |= editDouble("moisture noise", m.moistureNoise, 0.0, 3.0, "%.2f");
+    r.rebuild |= editDouble("regional noise", m.regionalNoise, 0.0, 3.0, "%.2f");
     r.rebuild |= editDouble("coastal height", m.coastalHeightM, 0.0, 3000.0, "%.0f m");
     r.rebuild |= editDouble("dry belts", m.dryBelt, 0.0, 2.0, "%.2f");
     r.rebuild |= editDouble("rock from slope", m.rockSlopeDeg, 5.0, 89.0, "%.0f deg");
