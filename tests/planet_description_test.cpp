@@ -73,7 +73,7 @@ bool startsWith(const std::string& text, std::string_view prefix) { return text.
 TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   std::vector<std::string> names = presetNames();
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"earth", "giant", "mars", "moon"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"earth", "faults", "giant", "mars", "moon", "mpd"}));
   EXPECT_EQ(resolvePreset(std::string(kDefaultPresetName)).name, "Earth");
   struct Expected {
     const char* name;
@@ -83,7 +83,8 @@ TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   };
   for (const Expected& e :
        {Expected{"earth", 6371000.0, true, ColorScheme::Earth}, Expected{"moon", 1737400.0, false, ColorScheme::Moon},
-        Expected{"mars", 3389500.0, false, ColorScheme::Mars}, Expected{"giant", 5.8e7, false, ColorScheme::Giant}}) {
+        Expected{"mars", 3389500.0, false, ColorScheme::Mars}, Expected{"giant", 5.8e7, false, ColorScheme::Giant},
+        Expected{"faults", 6371000.0, true, ColorScheme::Earth}, Expected{"mpd", 6371000.0, true, ColorScheme::Earth}}) {
     PlanetDescription d = resolvePreset(e.name);
     EXPECT_EQ(d.radiusM, e.radiusM) << e.name;
     EXPECT_EQ(d.hasOcean, e.hasOcean) << e.name;

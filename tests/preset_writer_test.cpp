@@ -443,7 +443,8 @@ TEST_F(PresetWriterFile, SavedPresetLoadsBackEqualAndNoTemporaryFileRemains) {
     EXPECT_EQ(canonicalForm(back), canonicalForm(d));
     EXPECT_EQ(canonicalForm(resolvePreset(target)), canonicalForm(d));
   }
-  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "giant.toml", "mars.toml", "moon.toml"}));
+  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "faults.toml", "giant.toml", "mars.toml", "moon.toml",
+                                               "mpd.toml"}));
 }
 
 TEST_F(PresetWriterFile, SaveReplacesAnExistingFileWhole) {

@@ -43,7 +43,7 @@ vec4 terrainSurfaceAttributes(vec3 offsetPlanet, real radius, vec3 nadir, vec3 r
   band.count = 0u;
   band.firstIndex = 0u;
   band.lastOctaveWeight = 1.0f;
-  band.pad2 = 0u;
+  band.elements = 0u;
   real bandNoise = evaluateFbm(band, directionPlanet * (radius * bandFrequency));
   vec2 face = patchFaceOffset(offsetPlanet / radius - refMinusNadir, faceNormal, faceAxisA, faceAxisB);
   return vec4(face.x, face.y, bandNoise, normalize(directionPlanet).z);
