@@ -280,7 +280,8 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError("layer = [1, 2]\n" + withoutLayers()),
             "x.toml:1: 'layer' must be an array of tables ([[layer]]), got an array of values");
   EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
-            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)");
+            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, "
+            "damped, eroded, faults, mpd or mpd_ico)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
             "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
 }
@@ -440,7 +441,7 @@ TEST(PlanetDescription, DamagedPresetsOnlyEverThrowOneLineErrors) {
 TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
   EXPECT_EQ(resolvePreset("moon").name, "Moon");
   EXPECT_EQ(errorOf([] { resolvePreset("venus"); }),
-            "unknown planet preset 'venus' (built-in: earth, moon, mars, giant; or a FILE.toml)");
+            "unknown planet preset 'venus' (built-in: earth, moon, mars, giant, faults, mpd; or a FILE.toml)");
 
   const test::TempDir dir("description_test");
   auto write = [&](const std::string& fileName, const std::string& text) {

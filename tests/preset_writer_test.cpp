@@ -177,6 +177,9 @@ class RandomPlanet {
       if (coin()) *c = {colorComponent(), colorComponent(), colorComponent()};
     int layers = int(integer(1, kMaxLayers));
     for (int i = 0; i < layers; ++i) d.layers.push_back(layer(i));
+    // Faults and MPD sample the unit sphere: the parser gives them no other frequency.
+    for (NoiseLayer& l : d.layers)
+      if (noise::isGenerator(l.noise.type)) l.frequency = 1.0 / d.radiusM;
     if (coin()) d.atmosphere = atmosphere();
     if (d.atmosphere.enabled && coin()) d.clouds = clouds(d.atmosphere.heightM);
     if (d.hasOcean && coin()) d.water = {value(kClarityRangeM), value(kWaveWavelengthRangeM), value(kWaveSlopeRange)};
@@ -235,6 +238,14 @@ class RandomPlanet {
     l.name = name(index);
     l.noise.type = noise::NoiseType(integer(0, int64_t(gpu::kNoiseTypeCount) - 1));
     l.noise.octaves = int(integer(noise::kMinOctaves, noise::kMaxOctaves));
+    if (l.noise.type == noise::NoiseType::Faults) {  // no octaves: a count and a ramp width
+      l.noise.octaves = 1;
+      l.noise.faults = int(integer(noise::kMinFaults, noise::kMaxFaults));
+      l.noise.width = coin() ? 0.0 : value({0.0, noise::kMaxFaultWidth});
+    } else if (noise::isMpd(l.noise.type)) {  // octaves are levels
+      l.noise.octaves = int(integer(noise::kMinMpdLevels, noise::kMaxMpdLevels));
+      l.noise.multifractal = coin();
+    }
     l.noise.lacunarity = value({std::nextafter(1.0, 2.0), 8.0});
     l.noise.H = value({noise::kMinH, noise::kMaxH});
     if (coin())  // craters' offset is a rim perturbation with a narrower range
