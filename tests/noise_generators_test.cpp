@@ -401,6 +401,11 @@ TEST(NoiseGenerators, PresetLayersSampleTheUnitSphereAndRejectKeysOfOtherTypes) 
   EXPECT_EQ(error("type = \"mpd\"\nlevels = 3\nwavelength_m = 1000\n"),
             "t.toml:12: 'wavelength_m' applies to fractal (faults, mpd and mpd_ico sample the unit sphere) layers "
             "only, not to type 'mpd'");
+  EXPECT_EQ(error("type = \"mpd\"\nlevels = 3\nlacunarity = 2\n"),
+            "t.toml:12: 'lacunarity' applies to fractal (each MPD level halves the edges) layers only, not to type "
+            "'mpd'");
+  EXPECT_EQ(error("type = \"faults\"\ncount = 3\nH = 0.5\n"),
+            "t.toml:12: 'H' applies to fractal, mpd and mpd_ico layers only, not to type 'faults'");
   EXPECT_EQ(error("type = \"fbm\"\noctaves = 3\nfrequency = 1\ncount = 3\n"),
             "t.toml:13: 'count' applies to faults layers only, not to type 'fbm'");
 }

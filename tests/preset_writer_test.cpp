@@ -254,6 +254,17 @@ class RandomPlanet {
     if (coin()) l.noise.gain = value({0.0, noise::kMaxGain});
     l.noise.seed = uint32_t(integer(0, 4294967295));
     l.noise.hash = noise::NoiseHash(integer(0, 1));
+    // Keys the parser refuses for these types keep their defaults.
+    if (noise::isGenerator(l.noise.type)) {
+      const noise::NoiseSettings defaults;
+      l.noise.lacunarity = defaults.lacunarity;
+      l.noise.offset.reset();
+      l.noise.hash = defaults.hash;
+      if (l.noise.type == noise::NoiseType::Faults) {
+        l.noise.H = defaults.H;
+        l.noise.gain.reset();
+      }
+    }
     // From a frequency key or from a wavelength_m key (1 / wavelength).
     l.frequency = coin() ? value(kFrequencyRange) : 1.0 / value(kWavelengthRangeM);
     l.amplitudeM = value(kAmplitudeRangeM);

@@ -257,6 +257,11 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
   onlyFor("width", faults, "faults");
   onlyFor("levels", mpd, "mpd and mpd_ico");
   onlyFor("multifractal", mpd, "mpd and mpd_ico");
+  onlyFor("lacunarity", !faults && !mpd, "fractal (each MPD level halves the edges)");
+  onlyFor("offset", !faults && !mpd, "fractal (not faults, mpd or mpd_ico)");
+  onlyFor("hash", !faults && !mpd, "fractal (faults and MPD hash each fault or vertex with the integer hash)");
+  onlyFor("H", !faults, "fractal, mpd and mpd_ico");
+  onlyFor("gain", !faults, "fractal, mpd and mpd_ico (k of the multifractal)");
   onlyFor("frequency", !faults && !mpd, "fractal (faults, mpd and mpd_ico sample the unit sphere)");
   onlyFor("wavelength_m", !faults && !mpd, "fractal (faults, mpd and mpd_ico sample the unit sphere)");
   if (faults) {

@@ -162,12 +162,13 @@ void writeLayer(Writer& w, const NoiseLayer& layer) {
   } else {
     w.integer("octaves", n.octaves);
   }
-  w.key("lacunarity", n.lacunarity);
-  w.key("H", n.H);
-  w.key("offset", n.offset.value_or(noise::defaultOffset(n.type)));
-  w.key("gain", n.gain.value_or(noise::kDefaultGain));
+  // The parser refuses the keys a type does not use (planet_description.cpp, readLayer).
+  if (!faults && !mpd) w.key("lacunarity", n.lacunarity);
+  if (!faults) w.key("H", n.H);
+  if (!faults && !mpd) w.key("offset", n.offset.value_or(noise::defaultOffset(n.type)));
+  if (!faults) w.key("gain", n.gain.value_or(noise::kDefaultGain));
   w.integer("seed", n.seed);
-  w.key("hash", quoted(noise::noiseHashName(n.hash)));
+  if (!faults && !mpd) w.key("hash", quoted(noise::noiseHashName(n.hash)));
   // The presets give most layers a wavelength; a frequency that no wavelength reproduces
   // exactly, or that reads better as itself (1.5e-6 rather than 666_666.6666666666), stays one.
   // Generators sample the unit sphere (frequency 1 / radius, set by the parser): no key.
