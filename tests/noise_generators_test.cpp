@@ -209,7 +209,7 @@ TEST(NoiseGenerators, MpdVertexValuesDoNotChangeWithFinerLevels) {
           for (int finer : {level + 1, level + 4, 16}) {
             const float fine = evaluateCpu(mpdSettings(f.type, finer, 0.8, 21), p);
             EXPECT_NEAR(fine, coarse, 2e-5f) << noiseTypeName(f.type) << " level " << level << " vertex (" << i << ", "
-                                              << j << ") evaluated with " << finer << " levels";
+                                             << j << ") evaluated with " << finer << " levels";
           }
         }
     }
@@ -334,7 +334,8 @@ TEST(NoiseGenerators, GradientsMatchCentralDifferencesOfTheDoubleReference) {
     for (const glm::dvec3& unit : spherePoints(300)) {
       const glm::dvec3 p = 3.0 * unit;  // not on the unit sphere: the radial derivative is 0
       const glm::dvec4 g = evaluateCpuGradientDouble(s, p);
-      EXPECT_NEAR(glm::dot(glm::dvec3(g.y, g.z, g.w), unit), 0.0, 1e-9 * (1.0 + glm::length(glm::dvec3(g.y, g.z, g.w))));
+      EXPECT_NEAR(glm::dot(glm::dvec3(g.y, g.z, g.w), unit), 0.0,
+                  1e-9 * (1.0 + glm::length(glm::dvec3(g.y, g.z, g.w))));
       const double h = 1e-7;
       glm::dvec3 difference;
       for (int a = 0; a < 3; ++a) {

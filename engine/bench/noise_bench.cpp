@@ -124,9 +124,8 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
         std::string method = hash == NoiseHash::Fast ? "gpu_fast" : "gpu_reference";
         note(gradient ? method + " gradient" : method);
         settings.hash = hash;
-        NoiseBenchResult result = measure(method, ours, [&] {
-          return (gradient ? gpu.dispatchGradient(settings) : gpu.dispatch(settings)) * 1e-3;
-        });
+        NoiseBenchResult result = measure(
+            method, ours, [&] { return (gradient ? gpu.dispatchGradient(settings) : gpu.dispatch(settings)) * 1e-3; });
         result.output = gradient ? "gradient" : "value";
         report.results.push_back(result);
       }

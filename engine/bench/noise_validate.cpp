@@ -14,10 +14,9 @@
 namespace planet::noise {
 namespace {
 
-constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,    NoiseType::Ridged,
-                                   NoiseType::Hybrid,  NoiseType::Hetero, NoiseType::Cascade,
-                                   NoiseType::Craters, NoiseType::Damped, NoiseType::Eroded,
-                                   NoiseType::Faults,  NoiseType::Mpd,    NoiseType::MpdIco};
+constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,     NoiseType::Ridged,  NoiseType::Hybrid,
+                                   NoiseType::Hetero,  NoiseType::Cascade, NoiseType::Craters, NoiseType::Damped,
+                                   NoiseType::Eroded,  NoiseType::Faults,  NoiseType::Mpd,     NoiseType::MpdIco};
 constexpr NoiseHash kAllHashes[] = {NoiseHash::Fast, NoiseHash::Reference};
 
 // Monotonic integer image of a float's bits: adjacent floats map to adjacent integers.

@@ -76,8 +76,8 @@ void validateNoiseSettings(const NoiseSettings& s) {
   }
   if (s.type == NoiseType::Faults) {
     if (s.faults < kMinFaults || s.faults > kMaxFaults)
-      throw Error(fmt::format("faults (the number of great circles) must be in {}..{}, got {}", kMinFaults,
-                              kMaxFaults, s.faults));
+      throw Error(fmt::format("faults (the number of great circles) must be in {}..{}, got {}", kMinFaults, kMaxFaults,
+                              s.faults));
     requireFinite(s.width, "width");
     if (!(s.width >= 0.0 && s.width <= kMaxFaultWidth))
       throw Error(fmt::format("width of faults must be in [0, {}] radians, got {}", kMaxFaultWidth, s.width));
@@ -129,8 +129,7 @@ gpu::NoiseParams toNoiseParams(const NoiseSettings& s) {
 }
 
 std::string describe(const NoiseSettings& s) {
-  if (s.type == NoiseType::Faults)
-    return fmt::format("faults count={} width={} seed={}", s.faults, s.width, s.seed);
+  if (s.type == NoiseType::Faults) return fmt::format("faults count={} width={} seed={}", s.faults, s.width, s.seed);
   if (isMpd(s.type))
     return fmt::format("{} levels={} H={} multifractal={} gain={} seed={}", noiseTypeName(s.type), s.octaves, s.H,
                        s.multifractal, s.gain.value_or(kDefaultGain), s.seed);

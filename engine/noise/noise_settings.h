@@ -60,9 +60,9 @@ struct NoiseSettings {
   std::optional<double> gain;    // empty: 2 (ridged: crest feedback; damped: slope damping; eroded: gully depth)
   uint32_t seed = 0;
   NoiseHash hash = NoiseHash::Fast;
-  int faults = 100;            // faults: number of great circles, 1..10,000
-  double width = 0.0;          // faults: transition half-width in radians, [0, 1.5] (0: sharp steps)
-  bool multifractal = false;   // mpd, mpd_ico: offsets scaled by gain · mean(parents) (seed 000 Table 3)
+  int faults = 100;           // faults: number of great circles, 1..10,000
+  double width = 0.0;         // faults: transition half-width in radians, [0, 1.5] (0: sharp steps)
+  bool multifractal = false;  // mpd, mpd_ico: offsets scaled by gain · mean(parents) (seed 000 Table 3)
 };
 
 // True for the generators of issue 22 (faults, mpd, mpd_ico): functions of the direction only,

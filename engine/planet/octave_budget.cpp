@@ -8,7 +8,7 @@
 namespace planet {
 namespace {
 
-constexpr double kOctahedronEdgeArc = 1.5707963267948966;  // 90 degrees
+constexpr double kOctahedronEdgeArc = 1.5707963267948966;   // 90 degrees
 constexpr double kIcosahedronEdgeArc = 1.1071487177940904;  // atan(2), 63.4 degrees
 
 }  // namespace

@@ -34,7 +34,8 @@ bool hasGeneratorLayer(const PlanetDescription& planet);
 
 // Whether the shaders specialized on the layers need their full variant: a crater, erosion or
 // generator layer. The other variant (NOISE_NO_CRATERS, which implies NOISE_NO_EROSION and
-// NOISE_NO_GENERATORS in noise.glsl) leaves them out; the erosion code alone doubles a noise pipeline's compile time on lavapipe.
+// NOISE_NO_GENERATORS in noise.glsl) leaves them out; the erosion code alone doubles a noise pipeline's compile time on
+// lavapipe.
 bool needsFullNoiseShaders(const PlanetDescription& planet);
 
 class PlanetGpuData {

@@ -68,12 +68,12 @@ vec4 faultPlane(uint i, uint seedMix) {
   // Taylor series to x^9 / x^10 on [0, pi/2]: errors below 4e-6, which only tilts the plane a
   // little (both sides compute the same polynomial).
   PRECISE real sine =
-      x * (real(1.0f) -
-           x2 * (real(0.166666667f) - x2 * (real(8.33333333e-3f) - x2 * (real(1.98412698e-4f) - x2 * real(2.75573192e-6f)))));
+      x * (real(1.0f) - x2 * (real(0.166666667f) -
+                              x2 * (real(8.33333333e-3f) - x2 * (real(1.98412698e-4f) - x2 * real(2.75573192e-6f)))));
   PRECISE real cosine =
       real(1.0f) -
-      x2 * (real(0.5f) - x2 * (real(4.16666667e-2f) - x2 * (real(1.38888889e-3f) -
-                                                         x2 * (real(2.48015873e-5f) - x2 * real(2.75573192e-7f)))));
+      x2 * (real(0.5f) - x2 * (real(4.16666667e-2f) -
+                               x2 * (real(1.38888889e-3f) - x2 * (real(2.48015873e-5f) - x2 * real(2.75573192e-7f)))));
   real c = cosine;
   real s = sine;
   if (quadrant == 1u) {
@@ -177,7 +177,9 @@ vec3 mpdBaseVertex(uint solid, uint id) {
   return vec3(u, v, real(0.0f));
 }
 
-uint icoVertexId(uint k, bool negative1, bool negative2) { return 4u * k + (negative1 ? 2u : 0u) + (negative2 ? 1u : 0u); }
+uint icoVertexId(uint k, bool negative1, bool negative2) {
+  return 4u * k + (negative1 ? 2u : 0u) + (negative2 ? 1u : 0u);
+}
 
 // The base face whose plane the ray through p meets first (for a solid whose faces are all at
 // one distance from the centre, the face of largest n·p): its three vertex ids.
