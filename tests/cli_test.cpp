@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -173,6 +174,13 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"noise --type fbm", "1 2 " + std::string(1 << 20, '9') + "\n", "line 1: '99999999"},
       {"noise", "1 2 3\n", "--type"},
       {"noise --type fbm --frobnicate", "1 2 3\n", "--frobnicate"},
+      {"noise --type faults --count 0", "1 2 3\n", "faults (the number of great circles) must be in 1..10000, got 0"},
+      {"noise --type faults --count 10001", "1 2 3\n", "must be in 1..10000, got 10001"},
+      {"noise --type faults --width -1", "1 2 3\n", "width of faults must be in [0, 1.5] radians, got -1"},
+      {"noise --type fbm --count 5", "1 2 3\n", "--count and --width apply to --type faults only, not to fbm"},
+      {"noise --type mpd --levels 25", "1 2 3\n", "levels of mpd must be in 1..24, got 25"},
+      {"noise --type mpd --octaves 5", "1 2 3\n", "--octaves does not apply to mpd or mpd_ico: give --levels"},
+      {"noise --type faults --multifractal", "1 2 3\n", "--levels and --multifractal apply to --type mpd and mpd_ico only"},
       // planet validate
       {"validate --points 0", "", "--points must be in 1..10000000, got 0"},
       {"validate --points 1e12", "", "--points expects a whole number, got '1e12'"},
@@ -553,6 +561,31 @@ TEST(Cli, GpuBackendPrintsTheSameValuesAsTheCpuReference) {
   EXPECT_EQ(gpu.out, cpu.out) << "lavapipe must agree bit for bit";
 }
 
+TEST(Cli, GeneratorTypesPrintTheirValuesAndTheGpuAgrees) {
+  std::string input;
+  for (int i = 0; i < 300; ++i)
+    input += std::to_string(i * 0.37 - 50) + " " + std::to_string(std::fmod(i * 7.1, 40.0) - 20) + " " +
+             std::to_string(i * 0.11 - 15) + "\n";
+  // One fault: two heights only, +r on one side of its circle and -r on the other.
+  CommandResult one = planet("noise --type faults --count 1 --seed 3", input);
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  std::set<std::string> distinct;
+  std::istringstream lines(one.out);
+  for (std::string line; std::getline(lines, line);) distinct.insert(line);
+  ASSERT_EQ(distinct.size(), 2u) << one.out;
+  EXPECT_EQ(std::stod(*distinct.begin()), -std::stod(*distinct.rbegin()));
+  for (const char* args : {"--type faults --count 50 --width 0.1", "--type mpd --levels 12 --multifractal",
+                           "--type mpd_ico --levels 20 --H 0.7"}) {
+    CommandResult cpu = planet(std::string("noise ") + args, input);
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.err;
+    EXPECT_EQ(lineCount(cpu.out), 300u);
+    CommandResult gpu = planet(std::string("noise ") + args + " --backend gpu", input);
+    if (noDevice(gpu)) GTEST_SKIP() << "no Vulkan device on this machine";
+    ASSERT_EQ(gpu.exitCode, 0) << gpu.err;
+    EXPECT_EQ(gpu.out, cpu.out) << args << ": lavapipe must agree bit for bit";
+  }
+}
+
 TEST(Cli, RenderWritesAPngAndReportsTheFrame) {
   const std::filesystem::path png = tempDir() / "moon.png";
   CommandResult run = planet("render --preset moon --size 64x36 --camera -20,40,-5000,0,-15 --out " + png.string());
@@ -605,7 +638,9 @@ TEST(Cli, ValidatePassesAndWritesJson) {
   nlohmann::json j = nlohmann::json::parse(readFile(json));
   EXPECT_TRUE(j["pass"].get<bool>());
   EXPECT_FALSE(j["device"].get<std::string>().empty());
-  ASSERT_EQ(j["cases"].size(), 52u);  // 2 hashes x (8 fractals x 3 parameter sets + simplex x 2)
+  // 2 hashes x (8 fractals x 3 parameter sets + simplex x 2), and with the fast hash only faults x 2
+  // and mpd, mpd_ico x 3.
+  ASSERT_EQ(j["cases"].size(), 60u);
   for (const auto& c : j["cases"]) {
     EXPECT_EQ(c["points"].get<int>(), 2000);
     EXPECT_EQ(c["fraction_identical"].get<double>(), 1.0) << c.dump();

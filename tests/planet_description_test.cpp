@@ -73,7 +73,7 @@ bool startsWith(const std::string& text, std::string_view prefix) { return text.
 TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   std::vector<std::string> names = presetNames();
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"earth", "giant", "mars", "moon"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"earth", "faults", "giant", "mars", "moon", "mpd"}));
   EXPECT_EQ(resolvePreset(std::string(kDefaultPresetName)).name, "Earth");
   struct Expected {
     const char* name;
@@ -83,7 +83,8 @@ TEST(PlanetDescription, BuiltInPresetsParseWithTheirRadius) {
   };
   for (const Expected& e :
        {Expected{"earth", 6371000.0, true, ColorScheme::Earth}, Expected{"moon", 1737400.0, false, ColorScheme::Moon},
-        Expected{"mars", 3389500.0, false, ColorScheme::Mars}, Expected{"giant", 5.8e7, false, ColorScheme::Giant}}) {
+        Expected{"mars", 3389500.0, false, ColorScheme::Mars}, Expected{"giant", 5.8e7, false, ColorScheme::Giant},
+        Expected{"faults", 6371000.0, true, ColorScheme::Earth}, Expected{"mpd", 6371000.0, true, ColorScheme::Earth}}) {
     PlanetDescription d = resolvePreset(e.name);
     EXPECT_EQ(d.radiusM, e.radiusM) << e.name;
     EXPECT_EQ(d.hasOcean, e.hasOcean) << e.name;
@@ -279,7 +280,8 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError("layer = [1, 2]\n" + withoutLayers()),
             "x.toml:1: 'layer' must be an array of tables ([[layer]]), got an array of values");
   EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
-            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)");
+            "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, "
+            "damped, eroded, faults, mpd or mpd_ico)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
             "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
 }
@@ -439,7 +441,7 @@ TEST(PlanetDescription, DamagedPresetsOnlyEverThrowOneLineErrors) {
 TEST(PlanetDescription, ResolvePresetByNameAndByFile) {
   EXPECT_EQ(resolvePreset("moon").name, "Moon");
   EXPECT_EQ(errorOf([] { resolvePreset("venus"); }),
-            "unknown planet preset 'venus' (built-in: earth, moon, mars, giant; or a FILE.toml)");
+            "unknown planet preset 'venus' (built-in: earth, moon, mars, giant, faults, mpd; or a FILE.toml)");
 
   const test::TempDir dir("description_test");
   auto write = [&](const std::string& fileName, const std::string& text) {

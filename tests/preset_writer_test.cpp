@@ -177,6 +177,9 @@ class RandomPlanet {
       if (coin()) *c = {colorComponent(), colorComponent(), colorComponent()};
     int layers = int(integer(1, kMaxLayers));
     for (int i = 0; i < layers; ++i) d.layers.push_back(layer(i));
+    // Faults and MPD sample the unit sphere: the parser gives them no other frequency.
+    for (NoiseLayer& l : d.layers)
+      if (noise::isGenerator(l.noise.type)) l.frequency = 1.0 / d.radiusM;
     if (coin()) d.atmosphere = atmosphere();
     if (d.atmosphere.enabled && coin()) d.clouds = clouds(d.atmosphere.heightM);
     if (d.hasOcean && coin()) d.water = {value(kClarityRangeM), value(kWaveWavelengthRangeM), value(kWaveSlopeRange)};
@@ -235,6 +238,14 @@ class RandomPlanet {
     l.name = name(index);
     l.noise.type = noise::NoiseType(integer(0, int64_t(gpu::kNoiseTypeCount) - 1));
     l.noise.octaves = int(integer(noise::kMinOctaves, noise::kMaxOctaves));
+    if (l.noise.type == noise::NoiseType::Faults) {  // no octaves: a count and a ramp width
+      l.noise.octaves = 1;
+      l.noise.faults = int(integer(noise::kMinFaults, noise::kMaxFaults));
+      l.noise.width = coin() ? 0.0 : value({0.0, noise::kMaxFaultWidth});
+    } else if (noise::isMpd(l.noise.type)) {  // octaves are levels
+      l.noise.octaves = int(integer(noise::kMinMpdLevels, noise::kMaxMpdLevels));
+      l.noise.multifractal = coin();
+    }
     l.noise.lacunarity = value({std::nextafter(1.0, 2.0), 8.0});
     l.noise.H = value({noise::kMinH, noise::kMaxH});
     if (coin())  // craters' offset is a rim perturbation with a narrower range
@@ -243,6 +254,17 @@ class RandomPlanet {
     if (coin()) l.noise.gain = value({0.0, noise::kMaxGain});
     l.noise.seed = uint32_t(integer(0, 4294967295));
     l.noise.hash = noise::NoiseHash(integer(0, 1));
+    // Keys the parser refuses for these types keep their defaults.
+    if (noise::isGenerator(l.noise.type)) {
+      const noise::NoiseSettings defaults;
+      l.noise.lacunarity = defaults.lacunarity;
+      l.noise.offset.reset();
+      l.noise.hash = defaults.hash;
+      if (l.noise.type == noise::NoiseType::Faults) {
+        l.noise.H = defaults.H;
+        l.noise.gain.reset();
+      }
+    }
     // From a frequency key or from a wavelength_m key (1 / wavelength).
     l.frequency = coin() ? value(kFrequencyRange) : 1.0 / value(kWavelengthRangeM);
     l.amplitudeM = value(kAmplitudeRangeM);
@@ -443,7 +465,8 @@ TEST_F(PresetWriterFile, SavedPresetLoadsBackEqualAndNoTemporaryFileRemains) {
     EXPECT_EQ(canonicalForm(back), canonicalForm(d));
     EXPECT_EQ(canonicalForm(resolvePreset(target)), canonicalForm(d));
   }
-  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "giant.toml", "mars.toml", "moon.toml"}));
+  EXPECT_EQ(files(), (std::vector<std::string>{"earth.toml", "faults.toml", "giant.toml", "mars.toml", "moon.toml",
+                                               "mpd.toml"}));
 }
 
 TEST_F(PresetWriterFile, SaveReplacesAnExistingFileWhole) {

@@ -29,6 +29,16 @@ int runBenchNoise(const GlobalOptions& global, const BenchNoiseCommand& cmd, con
   if (o.octaves < noise::kMinOctaves || o.octaves > noise::kMaxOctaves)
     throw UsageError(
         fmt::format("--octaves must be in {}..{}, got {}", noise::kMinOctaves, noise::kMaxOctaves, o.octaves));
+  try {
+    noise::NoiseSettings s;
+    s.type = noise::parseNoiseType(o.type);
+    s.octaves = o.octaves;
+    s.faults = o.faults;
+    s.width = o.width;
+    noise::validateNoiseSettings(s);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
   if (o.repeats < 5 || o.repeats > 1000)
     throw UsageError(fmt::format("--repeats must be in 5..1000, got {}", o.repeats));
   if (sub.count("--json")) checkOutputFile("--json", cmd.json);  // given but empty is an error too
@@ -63,7 +73,12 @@ void addBenchCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) 
       "Point-octave evaluations per second: GPU (fast and reference hash), CPU reference on 1 and all "
       "threads, libnoise Perlin and RidgedMulti, on the same points; GPU and CPU also with the analytic gradient");
   sub->add_option("--points", cmd->options.points, "Points per run")->capture_default_str();
-  sub->add_option("--octaves", cmd->options.octaves, "fBm octaves")->capture_default_str();
+  sub->add_option("--octaves", cmd->options.octaves, "fBm octaves (mpd, mpd_ico: levels)")->capture_default_str();
+  sub->add_option("--type", cmd->options.type,
+                  "Noise type of the GPU and CPU methods (any of planet noise's; libnoise stays fBm-like)")
+      ->capture_default_str();
+  sub->add_option("--count", cmd->options.faults, "faults: great circles per point, 1..10000")->capture_default_str();
+  sub->add_option("--width", cmd->options.width, "faults: ramp half-width, radians")->capture_default_str();
   sub->add_option("--repeats", cmd->options.repeats, "Timed runs per method after one warm-up (>= 5)")
       ->capture_default_str();
   sub->add_option("--json", cmd->json, "Also write the results as JSON to FILE");

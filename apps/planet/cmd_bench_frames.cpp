@@ -127,7 +127,7 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
     add(option);
     cmd->fileOptions.push_back(option);
   };
-  add(bench.add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  add(bench.add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
           ->capture_default_str());
   add(bench.add_option("--size", cmd->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str());
   add(bench.add_option("--frames", cmd->frames, "Timed frames, spread evenly over the path")->capture_default_str());

@@ -99,7 +99,7 @@ void addBenchSoakCommand(CLI::App& bench, const GlobalOptions& global, int& exit
       "Many frames with two in flight, the camera looping orbit -> ground -> orbit and the viewer's live settings "
       "changed on a schedule: allocator and resident memory flat after the warm-up, the last image equal to a fresh "
       "renderer's, no validation message (else exit 1)");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--size", cmd->size, "Render size WIDTHxHEIGHT in pixels")->capture_default_str();
   sub->add_option("--frames", cmd->frames, "Frames in all")->capture_default_str();

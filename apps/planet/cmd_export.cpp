@@ -271,7 +271,7 @@ int runMesh(const MeshCommand& cmd) {
 }
 
 void addCommonOptions(CLI::App& sub, CommonExportOptions& o, const char* formats) {
-  sub.add_option("--preset", o.preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")->capture_default_str();
+  sub.add_option("--preset", o.preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")->capture_default_str();
   sub.add_option("--seed", o.seed, "Added to every layer's seed, as in planet render");
   sub.add_option("--out", o.out, "File to write (replaced atomically)")->required();
   sub.add_option("--format", o.format, formats);

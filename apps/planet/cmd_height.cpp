@@ -93,7 +93,7 @@ void addHeightCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   auto cmd = std::make_shared<HeightCommand>();
   CLI::App* sub = app.add_subcommand(
       "height", "Terrain heights in metres above the radius sphere, one per line, along a great circle from --at");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--seed", cmd->seed, "Added to every layer's seed, as in planet render and planet export");
   sub->add_option("--at", cmd->at, "Start point LAT,LON in degrees")->required();

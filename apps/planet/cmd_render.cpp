@@ -176,7 +176,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<RenderCommand>();
   CLI::App* sub = app.add_subcommand("render", "Render a planet offscreen (no window needed) and write a PNG");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--scene", cmd->scene,
                   "A scene of several bodies instead of one preset: built-in (system) or a .toml file");

@@ -204,7 +204,7 @@ void addSkyCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
       "One view ray through the atmosphere: for each of the model's wavelengths (680, 550, 440 nm) the "
       "transmittance along the view and the single-scattered and total (single + multiple) sky radiance per "
       "steradian for a top-of-atmosphere solar irradiance of 1");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--altitude", cmd->altitudeM, "Viewpoint altitude above the planet's radius (m, >= 0)")->required();
   sub->add_option("--sun-elevation", cmd->sunElevationDeg, "Sun elevation above the horizon (degrees, -90..90)")

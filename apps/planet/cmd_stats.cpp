@@ -194,7 +194,7 @@ void addStatsCommand(CLI::App& app, int& exitCode) {
       "Terrain statistics of issue 10 from the CPU reference's equirect heights (no GPU): land fraction, mean land "
       "elevation and ocean depth, hypsometry and its bimodality, coastline dimension, land in continents, highest "
       "and lowest point, land slopes; each beside its target");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--seed", cmd->seed, "Added to every layer's seed, as in planet render and planet export");
   sub->add_option("--size", cmd->size,

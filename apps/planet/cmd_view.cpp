@@ -98,7 +98,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   auto cmd = std::make_shared<ViewCommand>();
   CLI::App* sub = app.add_subcommand("view", "Fly around a planet in a window (real time)");
-  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant) or a .toml file")
+  sub->add_option("--preset", cmd->preset, "Built-in preset (earth, moon, mars, giant, faults, mpd) or a .toml file")
       ->capture_default_str();
   sub->add_option("--scene", cmd->scene, "Fly through a scene of several bodies: built-in (system) or a .toml file");
   sub->add_option("--camera", cmd->camera,

@@ -52,6 +52,7 @@ double NoiseBenchReport::rate(const std::string& method, const std::string& outp
 
 nlohmann::json NoiseBenchReport::toJson() const {
   nlohmann::json j;
+  j["type"] = type;
   j["device"] = device;
   j["driver"] = driver;
   j["points"] = points;
@@ -68,7 +69,8 @@ nlohmann::json NoiseBenchReport::toJson() const {
 }
 
 std::string NoiseBenchReport::table() const {
-  std::string out = fmt::format("device: {} ({})\npoints: {}, CPU threads: {}\n\n", device, driver, points, cpuThreads);
+  std::string out = fmt::format("device: {} ({})\ntype: {}\npoints: {}, CPU threads: {}\n\n", device, driver, type,
+                                points, cpuThreads);
   out +=
       fmt::format("{:<16} {:<9} {:>7} {:>14} {:>22}\n", "method", "output", "octaves", "median M/s", "min - max M/s");
   for (const NoiseBenchResult& r : results)
@@ -104,8 +106,15 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
   std::vector<float> values(points.size());
   std::vector<glm::vec4> gradients;  // sized when the CPU's gradient runs come
   NoiseSettings settings;
-  settings.type = NoiseType::Fbm;
+  settings.type = parseNoiseType(options.type);
   settings.octaves = options.octaves;
+  settings.faults = options.faults;
+  settings.width = options.width;
+  validateNoiseSettings(settings);
+  report.type = settings.type == NoiseType::Fbm ? std::string("fbm") : describe(settings);
+  // A fault sum has no octaves: its rate counts points (one "octave" each).
+  NoiseBenchOptions ours = options;
+  if (settings.type == NoiseType::Faults) ours.octaves = 1;
 
   {
     GpuNoise gpu(context);
@@ -115,9 +124,8 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
         std::string method = hash == NoiseHash::Fast ? "gpu_fast" : "gpu_reference";
         note(gradient ? method + " gradient" : method);
         settings.hash = hash;
-        NoiseBenchResult result = measure(method, options, [&] {
-          return (gradient ? gpu.dispatchGradient(settings) : gpu.dispatch(settings)) * 1e-3;
-        });
+        NoiseBenchResult result = measure(
+            method, ours, [&] { return (gradient ? gpu.dispatchGradient(settings) : gpu.dispatch(settings)) * 1e-3; });
         result.output = gradient ? "gradient" : "value";
         report.results.push_back(result);
       }
@@ -128,14 +136,14 @@ NoiseBenchReport runNoiseBench(vk::Context& context, const NoiseBenchOptions& op
     const std::string method = threads == 1 ? "cpu_1" : "cpu_all";
     note(method);
     report.results.push_back(
-        measure(method, options, [&] { return secondsOf([&] { evaluateCpu(settings, points, values, threads); }); }));
+        measure(method, ours, [&] { return secondsOf([&] { evaluateCpu(settings, points, values, threads); }); }));
   }
   gradients.resize(points.size());
   for (unsigned threads : {1u, 0u}) {
     const std::string method = threads == 1 ? "cpu_1" : "cpu_all";
     note(method + " gradient");
     NoiseBenchResult result = measure(
-        method, options, [&] { return secondsOf([&] { evaluateCpuGradient(settings, points, gradients, threads); }); });
+        method, ours, [&] { return secondsOf([&] { evaluateCpuGradient(settings, points, gradients, threads); }); });
     result.output = "gradient";
     report.results.push_back(result);
   }

@@ -18,8 +18,11 @@ namespace planet::noise {
 
 struct NoiseBenchOptions {
   size_t points = 1u << 20;
-  int octaves = 8;
-  int repeats = 7;  // timed runs after one warm-up run (at least 5)
+  int octaves = 8;           // fbm octaves; mpd, mpd_ico: levels (faults: counted as 1)
+  std::string type = "fbm";  // the type the GPU and CPU methods evaluate (libnoise stays fBm-like)
+  int faults = 100;          // faults: great circles per point
+  double width = 0.0;        // faults: ramp half-width, radians
+  int repeats = 7;           // timed runs after one warm-up run (at least 5)
 };
 
 struct NoiseBenchResult {
@@ -32,6 +35,7 @@ struct NoiseBenchResult {
 };
 
 struct NoiseBenchReport {
+  std::string type;  // e.g. "fbm", "faults count=1000 width=0 seed=0"
   std::string device;
   std::string driver;
   size_t points = 0;

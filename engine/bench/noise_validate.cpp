@@ -14,9 +14,9 @@
 namespace planet::noise {
 namespace {
 
-constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,    NoiseType::Ridged,
-                                   NoiseType::Hybrid,  NoiseType::Hetero, NoiseType::Cascade,
-                                   NoiseType::Craters, NoiseType::Damped, NoiseType::Eroded};
+constexpr NoiseType kAllTypes[] = {NoiseType::Simplex, NoiseType::Fbm,     NoiseType::Ridged,  NoiseType::Hybrid,
+                                   NoiseType::Hetero,  NoiseType::Cascade, NoiseType::Craters, NoiseType::Damped,
+                                   NoiseType::Eroded,  NoiseType::Faults,  NoiseType::Mpd,     NoiseType::MpdIco};
 constexpr NoiseHash kAllHashes[] = {NoiseHash::Fast, NoiseHash::Reference};
 
 // Monotonic integer image of a float's bits: adjacent floats map to adjacent integers.
@@ -90,6 +90,34 @@ std::vector<ValidationCase> validationCases() {
       NoiseSettings base;
       base.type = type;
       base.hash = hash;
+      if (type == NoiseType::Faults) {
+        // The hash setting does not apply (one integer hash per fault): the fast one only.
+        if (hash != NoiseHash::Fast) continue;
+        cases.push_back({"100 sharp faults, seed 0, near origin", base, false});
+        NoiseSettings smooth = base;
+        smooth.faults = 2000;
+        smooth.width = 0.02;
+        smooth.seed = 12345;
+        cases.push_back({"2000 faults, width 0.02, seed 12345, far (4e4 from origin)", smooth, true});
+        continue;
+      }
+      if (isMpd(type)) {
+        if (hash != NoiseHash::Fast) continue;
+        cases.push_back({"8 levels, H 1, seed 0, near origin", base, false});
+        NoiseSettings deep = base;
+        deep.octaves = 24;
+        deep.H = 0.9;
+        deep.seed = 12345;
+        cases.push_back({"24 levels, H 0.9, seed 12345, far (4e4 from origin)", deep, true});
+        NoiseSettings multi = base;
+        multi.octaves = 12;
+        multi.H = 0.7;
+        multi.multifractal = true;
+        multi.gain = 1.5;
+        multi.seed = 42;
+        cases.push_back({"12 levels, H 0.7, multifractal gain 1.5, seed 42", multi, false});
+        continue;
+      }
       cases.push_back({"defaults (8 oct, L 2, H 1, seed 0), near origin", base, false});
       if (type == NoiseType::Simplex) {
         // Octaves, lacunarity, H, offset and gain do not apply: vary only seed and distance.

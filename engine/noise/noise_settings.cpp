@@ -18,6 +18,7 @@ constexpr TypeName kTypeNames[] = {
     {NoiseType::Simplex, "simplex"}, {NoiseType::Fbm, "fbm"},       {NoiseType::Ridged, "ridged"},
     {NoiseType::Hybrid, "hybrid"},   {NoiseType::Hetero, "hetero"}, {NoiseType::Cascade, "cascade"},
     {NoiseType::Craters, "craters"}, {NoiseType::Damped, "damped"}, {NoiseType::Eroded, "eroded"},
+    {NoiseType::Faults, "faults"},   {NoiseType::Mpd, "mpd"},       {NoiseType::MpdIco, "mpd_ico"},
 };
 
 void requireFinite(double value, const char* name) {
@@ -25,6 +26,10 @@ void requireFinite(double value, const char* name) {
 }
 
 }  // namespace
+
+bool isGenerator(NoiseType type) { return type == NoiseType::Faults || isMpd(type); }
+
+bool isMpd(NoiseType type) { return type == NoiseType::Mpd || type == NoiseType::MpdIco; }
 
 double defaultOffset(NoiseType type) {
   switch (type) {
@@ -50,7 +55,8 @@ NoiseType parseNoiseType(std::string_view name) {
   for (const TypeName& t : kTypeNames)
     if (name == t.name) return t.type;
   throw Error(fmt::format(
-      "unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)",
+      "unknown noise type '{}' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped, eroded, "
+      "faults, mpd or mpd_ico)",
       name));
 }
 
@@ -61,8 +67,21 @@ NoiseHash parseNoiseHash(std::string_view name) {
 }
 
 void validateNoiseSettings(const NoiseSettings& s) {
-  if (s.octaves < kMinOctaves || s.octaves > kMaxOctaves)
+  if (isMpd(s.type)) {
+    if (s.octaves < kMinMpdLevels || s.octaves > kMaxMpdLevels)
+      throw Error(fmt::format("levels of {} must be in {}..{}, got {}", noiseTypeName(s.type), kMinMpdLevels,
+                              kMaxMpdLevels, s.octaves));
+  } else if (s.type != NoiseType::Faults && (s.octaves < kMinOctaves || s.octaves > kMaxOctaves)) {
     throw Error(fmt::format("octaves must be in {}..{}, got {}", kMinOctaves, kMaxOctaves, s.octaves));
+  }
+  if (s.type == NoiseType::Faults) {
+    if (s.faults < kMinFaults || s.faults > kMaxFaults)
+      throw Error(fmt::format("faults (the number of great circles) must be in {}..{}, got {}", kMinFaults, kMaxFaults,
+                              s.faults));
+    requireFinite(s.width, "width");
+    if (!(s.width >= 0.0 && s.width <= kMaxFaultWidth))
+      throw Error(fmt::format("width of faults must be in [0, {}] radians, got {}", kMaxFaultWidth, s.width));
+  }
   requireFinite(s.lacunarity, "lacunarity");
   if (!(s.lacunarity > 1.0 && s.lacunarity <= 8.0))
     throw Error(fmt::format("lacunarity must be in (1, 8], got {}", s.lacunarity));
@@ -88,7 +107,8 @@ gpu::NoiseParams toNoiseParams(const NoiseSettings& s) {
   validateNoiseSettings(s);
   gpu::NoiseParams p{};
   p.type = uint32_t(s.type);
-  p.octaves = uint32_t(s.octaves);
+  // Faults have no octaves: one "octave" that a renderer's budget may only switch off (0).
+  p.octaves = s.type == NoiseType::Faults ? 1u : uint32_t(s.octaves);
   p.hash = uint32_t(s.hash);
   p.seedMix = NoiseKernel<float>{}.noiseSeedMix(s.seed);
   p.lacunarity = float(s.lacunarity);
@@ -96,10 +116,23 @@ gpu::NoiseParams toNoiseParams(const NoiseSettings& s) {
   p.offset = float(s.offset.value_or(defaultOffset(s.type)));
   p.gain = float(s.gain.value_or(kDefaultGain));
   p.lastOctaveWeight = 1.0f;
+  if (s.type == NoiseType::Faults) {
+    p.offset = float(s.width);
+    p.elements = uint32_t(s.faults);
+  } else if (isMpd(s.type)) {
+    // Each level halves the edges: lacunarity 2 whatever was given, so offsets fall by 2^-H.
+    p.lacunarity = 2.0f;
+    p.octaveWeight = float(std::pow(2.0, -s.H));
+    p.elements = s.multifractal ? 1u : 0u;
+  }
   return p;
 }
 
 std::string describe(const NoiseSettings& s) {
+  if (s.type == NoiseType::Faults) return fmt::format("faults count={} width={} seed={}", s.faults, s.width, s.seed);
+  if (isMpd(s.type))
+    return fmt::format("{} levels={} H={} multifractal={} gain={} seed={}", noiseTypeName(s.type), s.octaves, s.H,
+                       s.multifractal, s.gain.value_or(kDefaultGain), s.seed);
   return fmt::format("{} octaves={} L={} H={} offset={} gain={} seed={} hash={}", noiseTypeName(s.type), s.octaves,
                      s.lacunarity, s.H, s.offset.value_or(defaultOffset(s.type)), s.gain.value_or(kDefaultGain), s.seed,
                      noiseHashName(s.hash));

@@ -1,7 +1,8 @@
 // Octave limiting (DESIGN.md, "Aliasing and cost"): a sample whose neighbours are s metres away
 // cannot show an octave whose wavelength is shorter than a few s; evaluating it only aliases
 // and costs time. Octave i of a layer has wavelength 1 / (frequency · L^i) (craters: the
-// largest crater's diameter, 0.6 of that). The budget keeps
+// largest crater's diameter, 0.6 of that; mpd, mpd_ico: octave i is subdivision level i + 1, its
+// edge length the wavelength; faults have one octave). The budget keeps
 // every octave whose wavelength is at least kOctaveWavelengthsPerSpacing · s and fades the
 // next one in over one octave, so the count is continuous in s:
 //   count(s) = clamp(1 + log_L(1 / (frequency · k · s)), 1, octaves)

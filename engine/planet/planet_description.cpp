@@ -60,7 +60,8 @@ constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m", "snow
                                            "highland",   "cliff",          "snow"};
 constexpr std::string_view kLayerKeys[] = {"name", "type", "octaves",   "lacunarity",   "H",          "offset", "gain",
                                            "seed", "hash", "frequency", "wavelength_m", "amplitude_m",
-                                           "transfer", "hypsometry", "mask", "mask_curve"};
+                                           "transfer", "hypsometry", "mask", "mask_curve",
+                                           "count", "width", "levels", "multifractal"};
 
 struct SchemeName {
   ColorScheme scheme;
@@ -244,9 +245,43 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
   layer.noise.type = parseAt(context, lineOf(*reader.find("type")), [&] {
     return noise::parseNoiseType(shortened(type));  // the cut is for the message: no type name is that long
   });
-  std::optional<int64_t> octaves = reader.integer("octaves", {noise::kMinOctaves, noise::kMaxOctaves});
-  if (!octaves) reader.missing("octaves");
-  layer.noise.octaves = int(*octaves);
+  // Keys that belong to some types only: a key given to a type it does not apply to is an error,
+  // not silently ignored (faults have no octaves, mpd counts levels, fractals have neither).
+  const bool faults = layer.noise.type == noise::NoiseType::Faults;
+  const bool mpd = noise::isMpd(layer.noise.type);
+  auto onlyFor = [&](std::string_view key, bool applies, const char* types) {
+    if (!applies && reader.find(key))
+      context.fail(lineOf(*reader.find(key)), fmt::format("'{}' applies to {} layers only, not to type '{}'", key,
+                                                          types, noise::noiseTypeName(layer.noise.type)));
+  };
+  onlyFor("octaves", !faults && !mpd, "fractal (not faults, mpd or mpd_ico)");
+  onlyFor("count", faults, "faults");
+  onlyFor("width", faults, "faults");
+  onlyFor("levels", mpd, "mpd and mpd_ico");
+  onlyFor("multifractal", mpd, "mpd and mpd_ico");
+  onlyFor("lacunarity", !faults && !mpd, "fractal (each MPD level halves the edges)");
+  onlyFor("offset", !faults && !mpd, "fractal (not faults, mpd or mpd_ico)");
+  onlyFor("hash", !faults && !mpd, "fractal (faults and MPD hash each fault or vertex with the integer hash)");
+  onlyFor("H", !faults, "fractal, mpd and mpd_ico");
+  onlyFor("gain", !faults, "fractal, mpd and mpd_ico (k of the multifractal)");
+  onlyFor("frequency", !faults && !mpd, "fractal (faults, mpd and mpd_ico sample the unit sphere)");
+  onlyFor("wavelength_m", !faults && !mpd, "fractal (faults, mpd and mpd_ico sample the unit sphere)");
+  if (faults) {
+    std::optional<int64_t> count = reader.integer("count", {noise::kMinFaults, noise::kMaxFaults});
+    if (!count) reader.missing("count");
+    layer.noise.faults = int(*count);
+    layer.noise.width = reader.number("width", Range{0.0, noise::kMaxFaultWidth}).value_or(0.0);
+    layer.noise.octaves = 1;
+  } else if (mpd) {
+    std::optional<int64_t> levels = reader.integer("levels", {noise::kMinMpdLevels, noise::kMaxMpdLevels});
+    if (!levels) reader.missing("levels");
+    layer.noise.octaves = int(*levels);
+    layer.noise.multifractal = reader.boolean("multifractal").value_or(false);
+  } else {
+    std::optional<int64_t> octaves = reader.integer("octaves", {noise::kMinOctaves, noise::kMaxOctaves});
+    if (!octaves) reader.missing("octaves");
+    layer.noise.octaves = int(*octaves);
+  }
   layer.noise.lacunarity = reader.number("lacunarity").value_or(layer.noise.lacunarity);
   layer.noise.H = reader.number("H").value_or(layer.noise.H);
   layer.noise.offset = reader.number("offset");
@@ -260,9 +295,10 @@ NoiseLayer readLayer(const Context& context, const toml::table& table) {
   std::optional<double> wavelength = reader.number("wavelength_m", kWavelengthRangeM);
   if (frequency && wavelength)
     context.fail(lineOf(*reader.find("wavelength_m")), "give either frequency or wavelength_m in [[layer]], not both");
-  if (!frequency && !wavelength)
+  if (!frequency && !wavelength && !faults && !mpd)
     context.fail(reader.line(), "missing key 'frequency' (or 'wavelength_m') in [[layer]]");
-  layer.frequency = frequency ? *frequency : 1.0 / *wavelength;
+  // Generators: 1 / radius, set once the radius is known (readLayers' caller).
+  layer.frequency = frequency ? *frequency : wavelength ? 1.0 / *wavelength : 1.0;
   layer.amplitudeM = reader.requiredNumber("amplitude_m", kAmplitudeRangeM);
   layer.transfer = readCurve(context, reader, "transfer", kCurveValueRange, kMaxCurvePoints);
   layer.hypsometry = readCurve(context, reader, "hypsometry", kUnitRange, kMaxCurvePoints);
@@ -414,6 +450,10 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
   if (const toml::table* table = optionalTable(context, root, "materials"))
     d.materials = readMaterials(context, *table, d.colors.scheme);
   d.layers = readLayers(context, root);
+  // Faults and MPD are functions of the direction: they sample the unit sphere (and the octave
+  // budget measures their levels in radii).
+  for (NoiseLayer& layer : d.layers)
+    if (noise::isGenerator(layer.noise.type)) layer.frequency = 1.0 / d.radiusM;
   if (const toml::table* table = optionalTable(context, root, "atmosphere"))
     d.atmosphere = readAtmosphere(context, *table);
   if (const toml::table* table = optionalTable(context, root, "clouds")) {
@@ -568,6 +608,10 @@ std::string canonicalForm(const PlanetDescription& d) {
         formatNumber(n.H), formatNumber(n.offset.value_or(noise::defaultOffset(n.type))),
         formatNumber(n.gain.value_or(noise::kDefaultGain)), n.seed, noise::noiseHashName(n.hash),
         formatNumber(l.frequency), formatNumber(l.amplitudeM));
+    // Only generator layers add these lines, so the hashes of other planets stay as they were.
+    if (n.type == noise::NoiseType::Faults)
+      out += fmt::format("layer.{0}.count={1}\nlayer.{0}.width={2}\n", i, n.faults, formatNumber(n.width));
+    if (noise::isMpd(n.type)) out += fmt::format("layer.{}.multifractal={}\n", i, n.multifractal);
     // Only shaped layers add lines, so the hashes of unshaped planets stay as they were.
     auto curve = [&](const char* key, const std::vector<CurvePoint>& points) {
       if (points.empty()) return;

@@ -36,8 +36,13 @@ bool hasErosionLayer(const PlanetDescription& planet) {
   });
 }
 
+bool hasGeneratorLayer(const PlanetDescription& planet) {
+  return std::any_of(planet.layers.begin(), planet.layers.end(),
+                     [](const NoiseLayer& layer) { return noise::isGenerator(layer.noise.type); });
+}
+
 bool needsFullNoiseShaders(const PlanetDescription& planet) {
-  return hasCraterLayer(planet) || hasErosionLayer(planet);
+  return hasCraterLayer(planet) || hasErosionLayer(planet) || hasGeneratorLayer(planet);
 }
 
 PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& planet) : planet_(planet) {

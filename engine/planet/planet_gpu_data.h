@@ -29,9 +29,13 @@ bool hasCraterLayer(const PlanetDescription& planet);
 // Whether a layer of `planet` is of type damped or eroded (shaders/common/noise_erosion.glsl).
 bool hasErosionLayer(const PlanetDescription& planet);
 
-// Whether the shaders specialized on the layers need their full variant: a crater or erosion
-// layer. The other variant (NOISE_NO_CRATERS, which implies NOISE_NO_EROSION in noise.glsl)
-// leaves both out; the erosion code alone doubles a noise pipeline's compile time on lavapipe.
+// Whether a layer of `planet` is of type faults, mpd or mpd_ico (shaders/common/noise_generators.glsl).
+bool hasGeneratorLayer(const PlanetDescription& planet);
+
+// Whether the shaders specialized on the layers need their full variant: a crater, erosion or
+// generator layer. The other variant (NOISE_NO_CRATERS, which implies NOISE_NO_EROSION and
+// NOISE_NO_GENERATORS in noise.glsl) leaves them out; the erosion code alone doubles a noise pipeline's compile time on
+// lavapipe.
 bool needsFullNoiseShaders(const PlanetDescription& planet);
 
 class PlanetGpuData {

@@ -151,20 +151,34 @@ void writeLayer(Writer& w, const NoiseLayer& layer) {
   w.table("[[layer]]");
   w.key("name", quoted(layer.name));
   w.key("type", quoted(noise::noiseTypeName(n.type)));
-  w.integer("octaves", n.octaves);
-  w.key("lacunarity", n.lacunarity);
-  w.key("H", n.H);
-  w.key("offset", n.offset.value_or(noise::defaultOffset(n.type)));
-  w.key("gain", n.gain.value_or(noise::kDefaultGain));
+  const bool faults = n.type == noise::NoiseType::Faults;
+  const bool mpd = noise::isMpd(n.type);
+  if (faults) {
+    w.integer("count", n.faults);
+    w.key("width", n.width);
+  } else if (mpd) {
+    w.integer("levels", n.octaves);
+    w.boolean("multifractal", n.multifractal);
+  } else {
+    w.integer("octaves", n.octaves);
+  }
+  // The parser refuses the keys a type does not use (planet_description.cpp, readLayer).
+  if (!faults && !mpd) w.key("lacunarity", n.lacunarity);
+  if (!faults) w.key("H", n.H);
+  if (!faults && !mpd) w.key("offset", n.offset.value_or(noise::defaultOffset(n.type)));
+  if (!faults) w.key("gain", n.gain.value_or(noise::kDefaultGain));
   w.integer("seed", n.seed);
-  w.key("hash", quoted(noise::noiseHashName(n.hash)));
+  if (!faults && !mpd) w.key("hash", quoted(noise::noiseHashName(n.hash)));
   // The presets give most layers a wavelength; a frequency that no wavelength reproduces
   // exactly, or that reads better as itself (1.5e-6 rather than 666_666.6666666666), stays one.
+  // Generators sample the unit sphere (frequency 1 / radius, set by the parser): no key.
   std::optional<double> wavelength = exactWavelength(layer.frequency);
-  if (wavelength && significantDigits(shortest(*wavelength)) <= significantDigits(shortest(layer.frequency)))
-    w.key("wavelength_m", *wavelength);
-  else
-    w.key("frequency", layer.frequency);
+  if (!faults && !mpd) {
+    if (wavelength && significantDigits(shortest(*wavelength)) <= significantDigits(shortest(layer.frequency)))
+      w.key("wavelength_m", *wavelength);
+    else
+      w.key("frequency", layer.frequency);
+  }
   w.key("amplitude_m", layer.amplitudeM);
   auto curve = [&](std::string_view key, const std::vector<CurvePoint>& points) {
     if (points.empty()) return;

@@ -37,6 +37,14 @@ OctaveTables buildOctaveTables(const PlanetDescription& planet, const glm::dvec3
     // and the double reference use it.
     const double lacunarity = double(float(layer.noise.lacunarity));
     double scale = layer.frequency;
+    if (noise::isGenerator(layer.noise.type)) {
+      // Faults and MPD read only octave 0's point, for its direction (noise_generators.glsl):
+      // the anchor on the unit sphere as it is, no lattice split, whose remainder in [0, 3) would
+      // hold the direction less precisely (a unit vector in float: 6e-8).
+      tables.remainders[l * kOctaves] = glm::vec4(glm::vec3(anchorM * scale), float(scale));
+      tables.shifts[l * kOctaves] = glm::uvec4(0u);
+      continue;
+    }
     for (uint32_t i = 0; i < uint32_t(layer.noise.octaves); ++i, scale *= lacunarity) {
       glm::vec4& remainder = tables.remainders[l * kOctaves + i];
       splitLatticeAnchor(anchorM * scale, remainder, tables.shifts[l * kOctaves + i]);

@@ -18,6 +18,10 @@
 #if defined(NOISE_NO_CRATERS) && !defined(NOISE_NO_EROSION)
 #define NOISE_NO_EROSION
 #endif
+// ... and the generators of seeds 000 and 004 (faults, mpd, mpd_ico: noise_generators.glsl).
+#if defined(NOISE_NO_CRATERS) && !defined(NOISE_NO_GENERATORS)
+#define NOISE_NO_GENERATORS
+#endif
 
 // Simplex skew and unskew factors for 3D (Gustavson 2005): F3 = 1/3, G3 = 1/6.
 SHARED_CONST real kSkew3 = real(1.0f) / real(3.0f);
@@ -479,7 +483,8 @@ real cratersNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 
 // The fractal of type params.type along `walk` (a simplex type samples one octave). A shader
 // compiled with NOISE_NO_CRATERS leaves the crater fractal out (a craters layer then reads as
-// simplex), one compiled with NOISE_NO_EROSION the damped and eroded fractals (the same):
+// simplex), one compiled with NOISE_NO_EROSION the damped and eroded fractals (the same), one
+// compiled with NOISE_NO_GENERATORS faults, mpd and mpd_ico (the same):
 // lavapipe inlines every branch here before specialization constants fold them away, so a shader
 // specialized on other layers would still pay for compiling that code.
 real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
@@ -494,6 +499,11 @@ real fractalNoise(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 #ifndef NOISE_NO_EROSION
   if (params.type == kNoiseDamped) return dampedNoise(params, walk);
   if (params.type == kNoiseEroded) return erodedNoise(params, walk);
+#endif
+#ifndef NOISE_NO_GENERATORS
+  // Their value is the value part of the value with gradient (the gradient is dead code here).
+  if (params.type == kNoiseFaults) return faultsNoiseGradient(params, walk).x;
+  if (params.type == kNoiseMpd || params.type == kNoiseMpdIco) return mpdNoiseGradient(params, walk).x;
 #endif
   return nextOctave(walk, params);
 }

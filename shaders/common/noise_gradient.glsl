@@ -315,9 +315,14 @@ vec4 cratersNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 // The erosion fractals (damped, eroded), value and gradient.
 #include "common/noise_erosion.glsl"
 
+// The generators of seeds 000 and 004 (faults, mpd, mpd_ico), value with gradient.
+#ifndef NOISE_NO_GENERATORS
+#include "common/noise_generators.glsl"
+#endif
+
 // fractalNoise with its gradient, vec4(value, d/dx, d/dy, d/dz), with respect to the walk's
 // input (plain: p; rebased: the offset in metres, for a terrain's slope). The value is
-// bit-identical to fractalNoise's. NOISE_NO_CRATERS and NOISE_NO_EROSION as there.
+// bit-identical to fractalNoise's. NOISE_NO_CRATERS, NOISE_NO_EROSION and NOISE_NO_GENERATORS as there.
 vec4 fractalNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   if (params.type == kNoiseFbm) return fbmNoiseGradient(params, walk);
   if (params.type == kNoiseRidged) return ridgedNoiseGradient(params, walk);
@@ -330,6 +335,10 @@ vec4 fractalNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
 #ifndef NOISE_NO_EROSION
   if (params.type == kNoiseDamped) return dampedNoiseGradient(params, walk);
   if (params.type == kNoiseEroded) return erodedNoiseGradient(params, walk);
+#endif
+#ifndef NOISE_NO_GENERATORS
+  if (params.type == kNoiseFaults) return faultsNoiseGradient(params, walk);
+  if (params.type == kNoiseMpd || params.type == kNoiseMpdIco) return mpdNoiseGradient(params, walk);
 #endif
   real plainScale = real(1.0f);
   return nextOctaveGradient(walk, params, plainScale);

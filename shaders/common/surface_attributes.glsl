@@ -55,7 +55,7 @@ real colourNoise(vec3 pointM, real frequency, uint octaves, real lastWeight, uin
   band.count = 0u;
   band.firstIndex = 0u;
   band.lastOctaveWeight = float(lastWeight);
-  band.pad2 = 0u;
+  band.elements = 0u;
   return evaluateFbm(band, pointM * frequency);
 }
 
