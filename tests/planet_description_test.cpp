@@ -281,7 +281,8 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError(edit("type = \"fbm\"", "type = \"fbn\"")),
             "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, damped or eroded)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
-            "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
+            "x.toml:8: unknown color scheme 'venus' (expected one of earth, altitude, moon, mars, giant, "
+            "altitude_perturbed, noise, altitude_noise, turbulence, earth_like, gradient, moon_like)");
 }
 
 TEST(PlanetDescription, OutOfRangeValuesNameKeyLineRangeAndValue) {
