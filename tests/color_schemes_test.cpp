@@ -24,9 +24,7 @@ constexpr double kEarthRadiusM = 6'371'000.0;
 // Colours are compared to float rounding: the formulas are a few multiplies and adds.
 constexpr float kTolerance = 1e-5f;
 
-gpu::SchemeParams params(ColorScheme scheme) {
-  return schemeGpuParams(defaultColors(scheme), kEarthRadiusM, 40.0);
-}
+gpu::SchemeParams params(ColorScheme scheme) { return schemeGpuParams(defaultColors(scheme), kEarthRadiusM, 40.0); }
 
 glm::vec3 colorAt(const gpu::SchemeParams& p, float altitudeM, float noise, float latitudeDeg = 0.0f,
                   float slopeDeg = 0.0f) {
@@ -45,7 +43,7 @@ void expectNear(const glm::vec3& actual, const glm::vec3& expected, const char* 
 TEST(ColorScheme, AltitudeIsTheSeedsThreeColourRampUpToTheSnowLine) {
   const PlanetColors c = defaultColors(ColorScheme::Altitude);
   gpu::SchemeParams p = schemeGpuParams(c, kEarthRadiusM, 40.0);
-  p.shape.y = 4000.0f;  // snow line
+  p.shape.y = 4000.0f;                       // snow line
   for (float noise : {-1.0f, 0.0f, 1.0f}) {  // no noise in the seed's #1
     expectNear(colorAt(p, -500.0f, noise), c.lowland, "below sea level: lowland");
     expectNear(colorAt(p, 0.0f, noise), c.lowland, "sea level");
@@ -113,12 +111,14 @@ TEST(ColorScheme, TurbulenceIsBlackWhereTheNoiseIsZeroAndRedWhereItsMagnitudeIsM
 TEST(ColorScheme, EarthLikeHasItsVegetationZonesByLatitude) {
   gpu::SchemeParams p = params(ColorScheme::EarthLike);
   p.shape.z = 0.0f;  // unperturbed latitudes first
-  const glm::vec3 knot[5] = {0.5f * glm::vec3(p.palette[0] + p.palette[5]), 0.5f * glm::vec3(p.palette[1] + p.palette[6]),
-                             0.5f * glm::vec3(p.palette[2] + p.palette[7]), 0.5f * glm::vec3(p.palette[3] + p.palette[8]),
-                             0.5f * glm::vec3(p.palette[4] + p.palette[9])};
+  const glm::vec3 knot[5] = {
+      0.5f * glm::vec3(p.palette[0] + p.palette[5]), 0.5f * glm::vec3(p.palette[1] + p.palette[6]),
+      0.5f * glm::vec3(p.palette[2] + p.palette[7]), 0.5f * glm::vec3(p.palette[3] + p.palette[8]),
+      0.5f * glm::vec3(p.palette[4] + p.palette[9])};
   const float latitudes[5] = {0.0f, 22.5f, 45.0f, 67.5f, 90.0f};
   for (int i = 0; i < 5; ++i) expectNear(colorAt(p, 0.0f, 0.0f, latitudes[i]), knot[i], "a zone's own latitude");
-  for (float lat : {-45.0f, -67.5f}) expectNear(colorAt(p, 0.0f, 0.0f, lat), colorAt(p, 0.0f, 0.0f, -lat), "hemispheres");
+  for (float lat : {-45.0f, -67.5f})
+    expectNear(colorAt(p, 0.0f, 0.0f, lat), colorAt(p, 0.0f, 0.0f, -lat), "hemispheres");
   // Green rainforest at the equator, ochre desert in the subtropics, white at the poles.
   const glm::vec3 equator = colorAt(p, 0.0f, 0.0f, 3.0f), desert = colorAt(p, 0.0f, 0.0f, 22.0f),
                   pole = colorAt(p, 0.0f, 0.0f, 88.0f);

@@ -35,8 +35,8 @@ gpu::SchemeParams schemeGpuParams(const PlanetColors& colors, double radiusM, do
   const double capRad = colors.iceCapLatitudeDeg * std::numbers::pi / 180.0;
   p.shape = glm::vec4(float(int(colors.scheme)), float(colors.snowLineM), float(colors.perturbation),
                       float(rockSlopeDeg * std::numbers::pi / 180.0));
-  p.noise = glm::vec4(float(radiusM / colors.noiseWavelengthM), colors.polarCaps ? 1.0f : 0.0f,
-                      float(std::sin(capRad)), float(capRad));
+  p.noise = glm::vec4(float(radiusM / colors.noiseWavelengthM), colors.polarCaps ? 1.0f : 0.0f, float(std::sin(capRad)),
+                      float(capRad));
   return p;
 }
 
