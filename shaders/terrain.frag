@@ -14,6 +14,8 @@
 
 #include "terrain_material.glsl"
 
+#include "common/color_schemes.glsl"
+
 #include "common/rings.glsl"
 
 layout(location = 0) in vec3 inNormal;
@@ -28,25 +30,11 @@ layout(location = 0) out vec4 outColor;
 // smaller depth), so the implementation may still reject hidden fragments before shading them.
 layout(depth_less) out float gl_FragDepth;
 
-const uint kSchemeEarth = 0u;
-const uint kSchemeAltitude = 1u;
-const uint kSchemeMoon = 2u;
-const uint kSchemeMars = 3u;
-const uint kSchemeGiant = 4u;
-
-// The schemes that are not materials (terrain_material.glsl): the debug ramp by altitude and the
-// gas giant's bands.
+// The gas giant's belts and zones: they follow the latitude; the preset's layers (small heights,
+// large wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
+// by about a twentieth of its width. The poles fade into a dull hood.
 vec3 bandColor(float altitude, float sinLatitude) {
-  uint scheme = uint(frame.shading.y);
   float snowLine = frame.planet.w;
-  if (scheme == kSchemeAltitude) {
-    float t = clamp(altitude / max(snowLine, 1.0f), 0.0f, 1.0f);
-    return t < 0.5f ? mix(frame.colorLowland.rgb, frame.colorHighland.rgb, 2.0f * t)
-                    : mix(frame.colorHighland.rgb, frame.colorSnow.rgb, 2.0f * t - 1.0f);
-  }
-  // Giant: belts and zones follow the latitude; the preset's layers (small heights, large
-  // wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
-  // by about a twentieth of its width. The poles fade into a dull hood.
   float latitude = asin(clamp(sinLatitude, -1.0f, 1.0f));
   float warp = altitude / max(snowLine, 1.0f);
   float s = 17.0f * latitude + 0.3f * warp;
@@ -99,6 +87,7 @@ void main() {
   // on the ground (the larger of its two sides, so no octave finer than the pixel shows).
   vec3 offsetPlanet = mat3(frame.localToPlanet) * (vec3(0.0f, 0.0f, frame.camera.x) - inToCamera);
   float footprintM = max(length(dFdx(inToCamera)), length(dFdy(inToCamera)));
+  float latitudeEdge = fwidth(inAttributes.w) * 0.63661977f;  // |latitude| / 90° per pixel (d asin ≥ d sin)
   vec3 up = normalize(inUp);
   float jitter = inAttributes.z;
   float seaLevel = frame.planet.x;
@@ -124,10 +113,23 @@ void main() {
   } else {
     float slope = 1.0f - max(dot(normal, up), 0.0f);
     uint scheme = uint(frame.shading.y);
-    if (scheme == kSchemeAltitude || scheme == kSchemeGiant)
+    bool seedScheme = scheme == kSchemeAltitude || scheme >= kSchemeAltitudePerturbed;
+    bool caps = frame.scheme.noise.y > 0.5f;
+    // Seed 000's colour noise, per pixel on the sphere (float directions are good to ~1 m on
+    // Earth, far below its finest octave's few km).
+    float colorNoise = 0.0f;
+    if (scheme >= kSchemeAltitudePerturbed || caps) {
+      float radius = frame.camera.y;
+      vec3 direction = normalize(mat3(frame.localToPlanet)[2] + offsetPlanet / radius);
+      colorNoise = schemeNoise(direction, frame.scheme.noise.x, footprintM / radius);
+    }
+    if (scheme == kSchemeGiant)
       albedo = bandColor(height - seaLevel, inAttributes.w);
+    else if (seedScheme)
+      albedo = schemeColor(frame.scheme, height - seaLevel, dot(normal, up), inAttributes.w, colorNoise, max(pixelM, 1.0f));
     else
       albedo = groundAlbedo(height - seaLevel, slope, inAttributes.w, jitter, pixelM, offsetPlanet, footprintM, normal);
+    if (caps) albedo = mix(albedo, frame.colorSnow.rgb, schemePolarCap(frame.scheme, inAttributes.w, colorNoise, latitudeEdge));
   }
   vec3 sunLight = sunIrradianceAt(height, up);
   if (frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it

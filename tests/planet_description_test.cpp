@@ -283,7 +283,8 @@ TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
             "x.toml:12: unknown noise type 'fbn' (expected simplex, fbm, ridged, hybrid, hetero, cascade, craters, "
             "damped, eroded, faults, mpd or mpd_ico)");
   EXPECT_EQ(parseError(edit("scheme = \"altitude\"", "scheme = \"venus\"")),
-            "x.toml:8: unknown color scheme 'venus' (expected earth, altitude, moon or mars)");
+            "x.toml:8: unknown color scheme 'venus' (expected one of earth, altitude, moon, mars, giant, "
+            "altitude_perturbed, noise, altitude_noise, turbulence, earth_like, gradient, moon_like)");
 }
 
 TEST(PlanetDescription, OutOfRangeValuesNameKeyLineRangeAndValue) {

@@ -55,9 +55,10 @@ constexpr std::string_view kWaterKeys[] = {"clarity_m", "wave_wavelength_m", "wa
 constexpr std::string_view kStarKeys[] = {"enabled", "seed", "faintest_magnitude", "brightness"};
 constexpr std::string_view kPlanetKeys[] = {"name",        "radius_m",     "has_ocean",
                                             "sea_level_m", "height_scale", "base_height_m"};
-constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m", "snow_line_m", "ice_cap_latitude_deg",
-                                           "deep_water", "shallow_water",  "beach",       "lowland",
-                                           "highland",   "cliff",          "snow"};
+constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m",     "snow_line_m",  "ice_cap_latitude_deg",
+                                           "deep_water", "shallow_water",      "beach",        "lowland",
+                                           "highland",   "cliff",              "snow",         "palette",
+                                           "polar_caps", "noise_wavelength_m", "perturbation"};
 constexpr std::string_view kLayerKeys[] = {"name", "type", "octaves",   "lacunarity",   "H",          "offset", "gain",
                                            "seed", "hash", "frequency", "wavelength_m", "amplitude_m",
                                            "transfer", "hypsometry", "mask", "mask_curve",
@@ -73,7 +74,46 @@ constexpr SchemeName kSchemeNames[] = {
     {ColorScheme::Moon, "moon"},
     {ColorScheme::Mars, "mars"},
     {ColorScheme::Giant, "giant"},
+    {ColorScheme::AltitudePerturbed, "altitude_perturbed"},
+    {ColorScheme::Noise, "noise"},
+    {ColorScheme::AltitudeNoise, "altitude_noise"},
+    {ColorScheme::Turbulence, "turbulence"},
+    {ColorScheme::EarthLike, "earth_like"},
+    {ColorScheme::Gradient, "gradient"},
+    {ColorScheme::MoonLike, "moon_like"},
 };
+constexpr ColorScheme kSchemes[] = {
+    ColorScheme::Earth,      ColorScheme::Altitude,      ColorScheme::Moon,       ColorScheme::Mars,
+    ColorScheme::Giant,      ColorScheme::AltitudePerturbed, ColorScheme::Noise,  ColorScheme::AltitudeNoise,
+    ColorScheme::Turbulence, ColorScheme::EarthLike,     ColorScheme::Gradient,   ColorScheme::MoonLike,
+};
+static_assert(std::size(kSchemes) == std::size(kSchemeNames));
+
+// palette = [[r, g, b], ...]: exactly the scheme's paletteSize colours.
+void readPalette(const Context& context, const TableReader& reader, PlanetColors& colors) {
+  const toml::node* node = reader.find("palette");
+  if (!node) return;
+  const size_t size = paletteSize(colors.scheme);
+  if (size == 0)
+    context.fail(lineOf(*node), fmt::format("palette is not used by scheme '{}' (only by the schemes of seed 000)",
+                                            colorSchemeName(colors.scheme)));
+  const toml::array* array = node->as_array();
+  if (!array || array->size() != size)
+    context.fail(lineOf(*node),
+                 fmt::format("palette of scheme '{}' must be an array of {} colours [r, g, b], got {}",
+                             colorSchemeName(colors.scheme), size,
+                             array ? fmt::format("{} elements", array->size()) : typeName(*node)));
+  for (size_t i = 0; i < size; ++i) {
+    const toml::node& item = *array->get(i);
+    const toml::array* rgb = item.as_array();
+    if (!rgb || rgb->size() != 3)
+      context.fail(lineOf(item), fmt::format("palette[{}] must be an array of 3 numbers [r, g, b], got {}", i,
+                                             rgb ? fmt::format("{} elements", rgb->size()) : typeName(item)));
+    for (size_t k = 0; k < 3; ++k)
+      colors.palette[i][int(k)] =
+          float(reader.element(*rgb->get(k), fmt::format("palette[{}][{}]", i, k), kColorComponentRange));
+  }
+}
 
 PlanetColors readColors(const Context& context, const toml::table& table) {
   TableReader reader(context, table, "[colors]", kColorKeys);
@@ -99,6 +139,14 @@ PlanetColors readColors(const Context& context, const toml::table& table) {
   };
   for (const ColorKey& c : colorKeys)
     if (auto value = reader.color(c.key)) colors.*c.member = *value;
+  readPalette(context, reader, colors);
+  colors.noiseWavelengthM =
+      reader.number("noise_wavelength_m", kColorNoiseWavelengthRangeM).value_or(colors.noiseWavelengthM);
+  colors.perturbation = reader.number("perturbation", kPerturbationRange).value_or(colors.perturbation);
+  colors.polarCaps = reader.boolean("polar_caps").value_or(colors.polarCaps);
+  // Caps without a latitude of their own start at seed 004's polar circle (its POLAR_CIRCLE,
+  // sin 66.5° = 0.917).
+  if (colors.polarCaps && !reader.find("ice_cap_latitude_deg")) colors.iceCapLatitudeDeg = kPolarCircleDeg;
   return colors;
 }
 
@@ -361,10 +409,80 @@ const char* colorSchemeName(ColorScheme scheme) {
   return "unknown";
 }
 
+std::span<const ColorScheme> colorSchemes() { return kSchemes; }
+
 ColorScheme parseColorScheme(std::string_view name) {
   for (const SchemeName& s : kSchemeNames)
     if (name == s.name) return s.scheme;
-  throw Error(fmt::format("unknown color scheme '{}' (expected earth, altitude, moon or mars)", shortened(name)));
+  std::string names;
+  for (const SchemeName& s : kSchemeNames) names += fmt::format("{}{}", names.empty() ? "" : ", ", s.name);
+  throw Error(fmt::format("unknown color scheme '{}' (expected one of {})", shortened(name), names));
+}
+
+size_t paletteSize(ColorScheme scheme) {
+  switch (scheme) {
+    case ColorScheme::Noise:
+    case ColorScheme::Turbulence:
+    case ColorScheme::Gradient: return 2;
+    case ColorScheme::MoonLike: return 4;
+    case ColorScheme::AltitudeNoise: return 8;
+    case ColorScheme::EarthLike: return 12;
+    default: return 0;
+  }
+}
+
+// The default palettes of seed 000's schemes (README.md lists what each colour is for).
+static std::array<glm::vec3, kMaxPaletteColors> schemePalette(ColorScheme scheme) {
+  std::array<glm::vec3, kMaxPaletteColors> p{};
+  switch (scheme) {
+    case ColorScheme::Noise:  // green <-> brown (seed: "green", "brown")
+      p[0] = {0.060f, 0.200f, 0.030f};
+      p[1] = {0.280f, 0.150f, 0.050f};
+      break;
+    case ColorScheme::Turbulence:  // black -> red (seed: "black and red", "fire-like")
+      p[0] = {0.000f, 0.000f, 0.000f};
+      p[1] = {0.800f, 0.030f, 0.000f};
+      break;
+    case ColorScheme::Gradient:  // flat -> steep (seed: two unnamed colours): light grass, dark rock
+      p[0] = {0.100f, 0.220f, 0.050f};
+      p[1] = {0.100f, 0.070f, 0.050f};
+      break;
+    case ColorScheme::MoonLike:  // maria: two dark greys; land: brighter greys low -> high
+      p[0] = {0.035f, 0.035f, 0.035f};
+      p[1] = {0.065f, 0.062f, 0.058f};
+      p[2] = {0.110f, 0.110f, 0.105f};
+      p[3] = {0.200f, 0.195f, 0.190f};
+      break;
+    case ColorScheme::AltitudeNoise:  // two sets of lowlands, highlands, mountains, snowy tops
+      p[0] = {0.040f, 0.150f, 0.020f};
+      p[1] = {0.150f, 0.160f, 0.050f};
+      p[2] = {0.220f, 0.130f, 0.060f};
+      p[3] = {0.850f, 0.870f, 0.900f};
+      p[4] = {0.130f, 0.180f, 0.040f};
+      p[5] = {0.320f, 0.240f, 0.110f};
+      p[6] = {0.190f, 0.180f, 0.170f};
+      p[7] = {0.750f, 0.800f, 0.880f};
+      break;
+    case ColorScheme::EarthLike:
+      // Two latitude splines (equator, 22.5°, 45°, 67.5°, pole: rainforest, desert, temperate
+      // forest, tundra, ice; seed 000 §2.1.1), then the mountain colours: rock and snow.
+      p[0] = {0.030f, 0.110f, 0.020f};
+      p[1] = {0.420f, 0.320f, 0.160f};
+      p[2] = {0.070f, 0.140f, 0.040f};
+      p[3] = {0.170f, 0.170f, 0.130f};
+      p[4] = {0.850f, 0.870f, 0.900f};
+      p[5] = {0.050f, 0.140f, 0.030f};
+      p[6] = {0.460f, 0.280f, 0.100f};
+      p[7] = {0.100f, 0.160f, 0.050f};
+      p[8] = {0.210f, 0.200f, 0.160f};
+      p[9] = {0.780f, 0.820f, 0.880f};
+      p[10] = {0.200f, 0.180f, 0.160f};
+      p[11] = {0.880f, 0.890f, 0.920f};
+      break;
+    default:
+      break;
+  }
+  return p;
 }
 
 PlanetColors defaultColors(ColorScheme scheme) {
@@ -408,6 +526,21 @@ PlanetColors defaultColors(ColorScheme scheme) {
       c.beach = {0.340f, 0.210f, 0.110f};
       c.cliff = {0.200f, 0.190f, 0.170f};
       c.snow = c.highland;
+      break;
+    case ColorScheme::AltitudePerturbed:
+    case ColorScheme::Noise:
+    case ColorScheme::AltitudeNoise:
+    case ColorScheme::Turbulence:
+    case ColorScheme::EarthLike:
+    case ColorScheme::Gradient:
+    case ColorScheme::MoonLike:
+      // Seed 000 names its colours but gives no values (its §4.7: "green", "brown", "black and
+      // red", "dark grey"); these are this project's choices. The named colours below are the
+      // altitude scheme's (altitude_perturbed's ramp, the sea floor and the water).
+      c = defaultColors(ColorScheme::Altitude);
+      c.scheme = scheme;
+      c.snowLineM = 4000.0;  // the top of the altitude ramps
+      c.palette = schemePalette(scheme);
       break;
     case ColorScheme::Mars:
       c.iceCapLatitudeDeg = 80.0;
@@ -555,6 +688,15 @@ std::string canonicalForm(const PlanetDescription& d) {
   out += fmt::format("deep_water={}\nshallow_water={}\nbeach={}\nlowland={}\nhighland={}\ncliff={}\nsnow={}\n",
                      color(c.deepWater), color(c.shallowWater), color(c.beach), color(c.lowland), color(c.highland),
                      color(c.cliff), color(c.snow));
+  // Seed 000's schemes and seed 004's caps add lines only where they are used, so the hashes of
+  // the planets from before them stay as they were.
+  const bool seedScheme = paletteSize(c.scheme) > 0 || c.scheme == ColorScheme::AltitudePerturbed;
+  if (seedScheme || c.polarCaps) {
+    out += fmt::format("noise_wavelength_m={}\nperturbation={}\npolar_caps={}\npalette=",
+                       formatNumber(c.noiseWavelengthM), formatNumber(c.perturbation), c.polarCaps);
+    for (size_t i = 0; i < paletteSize(c.scheme); ++i) out += color(c.palette[i]) + ";";
+    out += "\n";
+  }
   const MaterialDescription& m = d.materials;
   out += fmt::format(
       "materials.temperature_c={},{},{},{}\nmaterials.moisture={},{},{},{}\nmaterials.regional_noise={}\n"

@@ -13,6 +13,7 @@
 // radiusM + seaLevelM; the ground is under water where height(d) < seaLevelM.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -50,13 +51,25 @@ struct NoiseLayer {
 };
 
 // How the renderer colours the ground; each scheme has its own default palette (defaultColors).
+// The values are the shader's scheme numbers (shaders/common/color_schemes.glsl): append only.
 enum class ColorScheme {
   Earth,     // water, beach, vegetation to bare highland by height, rock on slopes, snow, ice caps
-  Altitude,  // debug ramp by height (the palette's lowland -> highland -> snow)
+  Altitude,  // seed 000 #1: lowland -> highland -> snow, piecewise linear by height up to the snow line
   Moon,      // grey regolith: dark maria low, bright highlands high
   Mars,      // red dust and dark basalt, polar caps
   Giant,     // a gas giant's belts and zones by latitude, warped by the heights (the layers' turbulence)
+  // Seed 000's other colouring schemes (its §4.7; shaders/common/color_schemes.glsl):
+  AltitudePerturbed,  // #2: the altitude ramp of a height moved by the colour noise
+  Noise,              // #3: green <-> brown by the colour noise
+  AltitudeNoise,      // #4: two four-colour altitude ramps blended by the colour noise
+  Turbulence,         // #5: black -> red by |colour noise|
+  EarthLike,          // #6: vegetation zones by perturbed latitude, toward mountain colours by height
+  Gradient,           // #7: flat -> steep colour by the slope
+  MoonLike,           // #8: maria (two greys by noise) below sea level, brighter greys by height above
 };
+
+// Colours of the palette a scheme of seed 000 uses (PlanetColors::palette), at most this many.
+inline constexpr size_t kMaxPaletteColors = 12;
 
 // Colours are linear RGB in [0, 1] (not sRGB: a picker's 0.5 is about 0.21 here).
 struct PlanetColors {
@@ -71,6 +84,14 @@ struct PlanetColors {
   glm::vec3 highland{0.0f};         // high ground
   glm::vec3 cliff{0.0f};            // steep slopes at any height
   glm::vec3 snow{0.0f};             // snow above the snow line and ice caps
+  // Seed 000's schemes (paletteSize(scheme) colours, each scheme's meaning in README.md):
+  std::array<glm::vec3, kMaxPaletteColors> palette{};
+  double noiseWavelengthM = 300'000.0;  // largest octave of their per-pixel colour noise
+  double perturbation = 0.3;            // how far the noise moves a zone edge: × snow line, × 45° of latitude
+  // Seed 004's polar caps: ice on land and sea poleward of iceCapLatitudeDeg, over any scheme,
+  // the edge moved by the colour noise as `perturbation` says.
+  bool polarCaps = false;
+  bool operator==(const PlanetColors&) const = default;
 };
 
 // Ground materials from climate and terrain (issue 20; shaders/terrain_material.glsl): the earth
@@ -193,6 +214,9 @@ inline constexpr Range kSeedRange{0.0, 4294967295.0};
 inline constexpr Range kBeachHeightRangeM{0.0, 1e3};
 inline constexpr Range kSnowLineRangeM{-1e5, 1e5};
 inline constexpr Range kIceCapLatitudeRangeDeg{0.0, 90.0};
+inline constexpr Range kColorNoiseWavelengthRangeM{1.0, 1e9};
+inline constexpr Range kPerturbationRange{0.0, 2.0};
+inline constexpr double kPolarCircleDeg = 66.5;  // seed 004's polar caps when a preset names no latitude
 inline constexpr Range kColorComponentRange{0.0, 1.0};
 inline constexpr Range kTemperatureRangeC{-273.0, 1000.0};
 inline constexpr Range kTemperatureDropRangeC{-500.0, 500.0};
@@ -235,8 +259,12 @@ inline constexpr size_t kMaxPresetBytes = 1 << 20;  // a preset file larger than
 inline constexpr std::string_view kDefaultPresetName = "earth";
 
 const char* colorSchemeName(ColorScheme scheme);
-// "earth", "altitude", "moon", "mars"; throws planet::Error naming the bad value.
+// Every scheme, in the enum's order.
+std::span<const ColorScheme> colorSchemes();
+// "earth", "altitude", ...; throws planet::Error naming the bad value and listing the valid ones.
 ColorScheme parseColorScheme(std::string_view name);
+// How many colours of PlanetColors::palette the scheme uses (0: none, it uses the named colours).
+size_t paletteSize(ColorScheme scheme);
 // The palette and bands a scheme uses when a preset leaves them out.
 PlanetColors defaultColors(ColorScheme scheme);
 // The climate, detail and biome palette a scheme uses when a preset leaves [materials] out.

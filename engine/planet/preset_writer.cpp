@@ -221,6 +221,14 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
   w.key("highland", color(c.highland));
   w.key("cliff", color(c.cliff));
   w.key("snow", color(c.snow));
+  if (const size_t size = paletteSize(c.scheme)) {
+    std::string text = "[";
+    for (size_t i = 0; i < size; ++i) text += (i ? ", " : "") + color(c.palette[i]);
+    w.key("palette", text + "]");
+  }
+  w.key("noise_wavelength_m", c.noiseWavelengthM);
+  w.key("perturbation", c.perturbation);
+  w.boolean("polar_caps", c.polarCaps);
 
   const MaterialDescription& m = d.materials;
   w.table("[materials]");

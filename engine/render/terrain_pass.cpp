@@ -18,6 +18,7 @@
 #include "render/patch_textures.h"
 #include "render/relief_cube.h"
 #include "render/sky_tables.h"
+#include "reference/color_schemes_cpu.h"
 #include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
 #include "spv/terrain.vert.h"
@@ -389,6 +390,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.colorCliff = toVec4(c.cliff);
   u.colorSnow = toVec4(c.snow);
   writeMaterials(u, planet_.materials, settings_.bandWavelengthM, o.nadirDirection() * planet_.radiusM);
+  u.scheme = schemeGpuParams(c, planet_.radiusM, planet_.materials.rockSlopeDeg);
 
   const PatchLayout& layout = frame_.patchLayout;
   if (!layout.levels.empty()) {

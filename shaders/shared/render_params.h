@@ -11,6 +11,7 @@
 
 #include "shared/gpu_types.h"
 #include "shared/ring_params.h"
+#include "shared/scheme_params.h"
 #include "shared/sky_params.h"
 #include "shared/terrain_params.h"
 
@@ -55,8 +56,8 @@ struct FrameUniforms {
   mat4 planetToLocal;   // its transpose
   vec4 camera;    // x: camera altitude above the radius sphere (m), y: radius (m), z: time (s), w: water wave slope
   vec4 planet;    // x: sea level (m), y: 1 if the planet has an ocean, z: beach height (m), w: snow line (m)
-  vec4 shading;   // x: sin(ice cap latitude), y: colour scheme, z: wireframe (1/0), w: ambient (fraction of the sun's
-                  // irradiance; airless bodies)
+  vec4 shading;   // x: sin(ice cap latitude), y: colour scheme (kScheme*, scheme_params.h), z: wireframe (1/0),
+                  // w: ambient (fraction of the sun's irradiance; airless bodies)
   vec4 sunLocal;  // xyz: unit direction toward the sun (local frame), w: sun irradiance
   vec4 water;     // x: clarity depth (m), y: largest wave wavelength (m), z: 1 if the water pass draws, w: Cox–Munk
                   // total mean square wave slope from the preset's wind (coxMunkSlopeVariance, water_pass.h)
@@ -103,8 +104,10 @@ struct FrameUniforms {
   // The ground noise's octaves rebased at the anchor (DESIGN.md precision rule; terrain_detail.glsl):
   vec4 groundOctaves[kGroundOctavesGpu];  // xyz: anchor · frequency minus the shift (cells), w: frequency (1/m)
   vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
+  // Seed 000's schemes and seed 004's polar caps (shaders/common/color_schemes.glsl).
+  SchemeParams scheme;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 1808)
+GPU_ASSERT_SIZE(FrameUniforms, 2032)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

@@ -213,10 +213,8 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
   }
   if (ImGui::CollapsingHeader("Colours")) {
     PlanetColors& c = s.planet.colors;
-    static constexpr ColorScheme kSchemes[] = {ColorScheme::Earth, ColorScheme::Altitude, ColorScheme::Moon,
-                                               ColorScheme::Mars};
     if (ImGui::BeginCombo("scheme", colorSchemeName(c.scheme))) {
-      for (ColorScheme scheme : kSchemes)
+      for (ColorScheme scheme : colorSchemes())
         if (ImGui::Selectable(colorSchemeName(scheme), scheme == c.scheme) && scheme != c.scheme) {
           c = defaultColors(scheme);
           s.planet.materials = defaultMaterials(scheme);
@@ -227,6 +225,18 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     r.rebuild |= editDouble("beach (m)", c.beachHeightM, 0.0, 1000.0, "%.0f");
     r.rebuild |= editDouble("snow line (m)", c.snowLineM, -2000.0, 10000.0, "%.0f");
     r.rebuild |= editDouble("ice caps from", c.iceCapLatitudeDeg, 0.0, 90.0, "%.1f deg");
+    // Seed 004's polar caps over any scheme, and seed 000's colour noise.
+    if (ImGui::Checkbox("polar caps", &c.polarCaps)) {
+      if (c.polarCaps && c.iceCapLatitudeDeg >= 90.0) c.iceCapLatitudeDeg = kPolarCircleDeg;
+      r.rebuild = true;
+    }
+    r.rebuild |= editDouble("colour noise", c.noiseWavelengthM, 1e3, 1e7, "%.0f m", ImGuiSliderFlags_Logarithmic);
+    r.rebuild |= editDouble("perturbation", c.perturbation, kPerturbationRange.min, kPerturbationRange.max, "%.2f");
+    for (size_t i = 0; i < paletteSize(c.scheme); ++i) {
+      ImGui::PushID(int(i));
+      r.rebuild |= editColor(fmt::format("palette {}", i).c_str(), c.palette[i]);
+      ImGui::PopID();
+    }
     r.rebuild |= editColor("lowland", c.lowland);
     r.rebuild |= editColor("highland", c.highland);
     r.rebuild |= editColor("cliff", c.cliff);
