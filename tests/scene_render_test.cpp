@@ -53,7 +53,9 @@ std::string moonAt(double semiMajorAxisM) {
 
 // The same body, camera and sun, once 1e9 m and once 1.5e11 m (1 au) from the scene's origin:
 // positions reach the GPU relative to the camera, so the pictures agree to rounding. A float
-// position at 1 au would be off by ~8 km, and the ground would jitter by whole pixels.
+// position at 1 au would be off by ~8 km, and the ground would jitter by whole pixels. The near
+// body's sun is (1.5e11 / 1e9)² times brighter (reference/sunlight.h): its sun intensity is
+// turned down by that factor, so that the two are lit alike.
 TEST_F(SceneRender, ABodyFarFromTheOriginLooksAsItDoesNearIt) {
   CameraPose pose;
   pose.latitudeDeg = 20.0;
@@ -65,7 +67,9 @@ TEST_F(SceneRender, ABodyFarFromTheOriginLooksAsItDoesNearIt) {
   int i = 0;
   for (double axis : {1.0e9, 1.5e11}) {
     const SceneDescription scene = sceneFrom(moonAt(axis));
-    Renderer renderer(context(), scene, smallSettings());
+    RenderSettings settings = smallSettings();
+    settings.terrain.sunIntensity = (axis / 1.5e11) * (axis / 1.5e11);
+    Renderer renderer(context(), scene, settings);
     const CameraBasis local = cameraBasis(pose, scene.bodies[0].planet.radiusM);
     images[i++] = renderer.renderScene(viewFrom(scene, 0.0, 0, local)).image;
   }
@@ -81,6 +85,44 @@ TEST_F(SceneRender, ABodyFarFromTheOriginLooksAsItDoesNearIt) {
   EXPECT_GT(lit / double(images[0].pixels.size()), 10.0) << "the ground should be sunlit";
   EXPECT_LE(differing, int(images[0].pixels.size() / 1000)) << "max difference " << maxDifference;
   EXPECT_LE(maxDifference, 8);
+}
+
+// Sunlight by distance (issue 23, point 3): the same airless moon, camera and sun direction at
+// 1 au and at 2 au from the sun. The renderer gives the shaders a quarter of the irradiance and
+// half the disc, and the ground (all of the frame, looking down) is a quarter as bright in
+// linear HDR: every light on an airless body, the sun and the fill, is proportional to it.
+TEST_F(SceneRender, ABodyTwiceAsFarFromTheSunGetsAQuarterOfTheLight) {
+  // moonAt's body stands at 30° on its orbit: the sun is overhead near latitude 0, longitude
+  // -150 of its frame; here it is about 30° from the zenith.
+  CameraPose pose;
+  pose.latitudeDeg = 5.0;
+  pose.longitudeDeg = -120.0;
+  pose.altitudeM = 3000.0;
+  pose.pitchDeg = -70.0;  // the top edge 40 degrees below the horizon: ground only
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 54;
+  double irradiance[2], disc[2], ground[2];
+  int k = 0;
+  for (double axis : {kAstronomicalUnitM, 2.0 * kAstronomicalUnitM}) {
+    const SceneDescription scene = sceneFrom(moonAt(axis));
+    Renderer renderer(context(), scene, settings);
+    const CameraBasis local = cameraBasis(pose, scene.bodies[0].planet.radiusM);
+    const RenderResult result = renderer.renderScene(viewFrom(scene, 0.0, 0, local), true);
+    irradiance[k] = result.terrain.sunIrradiance;
+    disc[k] = result.terrain.sunAngularRadiusRad;
+    double sum = 0.0;
+    for (const glm::vec4& texel : result.hdr) sum += double(texel.r) + double(texel.g) + double(texel.b);
+    ground[k] = sum / double(result.hdr.size());
+    ++k;
+  }
+  EXPECT_NEAR(irradiance[0], gpu::kSunIrradiance, 1e-6) << "the preset's sun at 1 au";
+  EXPECT_NEAR(irradiance[1] / irradiance[0], 0.25, 1e-6);
+  EXPECT_NEAR(disc[0], kSunAngularRadiusRad, 1e-9);
+  EXPECT_NEAR(disc[1] / disc[0], 0.5, 1e-5);
+  ASSERT_GT(ground[0], 0.01) << "the ground should be sunlit";
+  // Half-float HDR rounds each value by at most 2^-11 relative; the mean over 5,184 pixels far less.
+  EXPECT_NEAR(ground[1] / ground[0], 0.25, 0.25 * 1e-3);
 }
 
 // A moon between the camera and a ringed giant, with the sun behind the camera: one depth

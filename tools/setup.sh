@@ -9,8 +9,9 @@ cd "$(dirname "$0")/.."
 # Compiler and build; Vulkan loader, lavapipe (Vulkan on the CPU) and the validation layers;
 # glslang for GLSL -> SPIR-V at build time; libraries; GoogleTest; libnoise (the peer noise
 # library `planet bench noise` compares against); stb (PNG files for renders and golden images);
-# matplotlib (the frame-time plot of `planet bench --plot`, drawn by python3); GLFW and Dear
-# ImGui for the viewer (`planet view`), and Xvfb, the virtual display its test runs under.
+# matplotlib (the frame-time plot of `planet bench --plot`, drawn by python3); ffmpeg (the videos
+# of `planet render --path`; its tests read them back with ffprobe); GLFW and Dear ImGui for the
+# viewer (`planet view`), and Xvfb, the virtual display its test runs under.
 packages=(
   build-essential cmake ninja-build
   libvulkan-dev mesa-vulkan-drivers
@@ -21,6 +22,7 @@ packages=(
   libnoise-dev
   libstb-dev
   python3-matplotlib
+  ffmpeg
   libglfw3-dev libimgui-dev
   xvfb xauth xdotool
 )

@@ -117,8 +117,11 @@ void checkNumbersAsText(CLI::App& command) {
   }
 }
 
-ProgressLine::ProgressLine(std::string label)
-    : label_(std::move(label)), interactive_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {
+ProgressLine::ProgressLine(std::string label, std::string unit)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      interactive_(::isatty(STDERR_FILENO)),
+      start_(std::chrono::steady_clock::now()) {
   lastLine_ = start_;
 }
 
@@ -140,8 +143,8 @@ void ProgressLine::operator()(size_t done, size_t total) {
   const std::string bar = std::string(size_t(filled), '#') + std::string(size_t(kBarWidth - filled), '.');
   const std::string left =
       done > 0 && !last ? fmt::format(", ~{:.0f} s left", seconds * (1.0 - fraction) / fraction) : "";
-  const std::string line = fmt::format("{} [{}] {:3.0f} %  {} of {} heights  {:.1f} s{}", label_, bar, 100.0 * fraction,
-                                       done, total, seconds, left);
+  const std::string line = fmt::format("{} [{}] {:3.0f} %  {} of {} {}  {:.1f} s{}", label_, bar, 100.0 * fraction,
+                                       done, total, unit_, seconds, left);
   std::fprintf(stderr, interactive_ ? "\r%s   " : "%s\n", line.c_str());
   std::fflush(stderr);
 }

@@ -85,20 +85,20 @@ SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& t
 // its origin).
 void checkSceneExcludes(const CLI::App& command);
 
-// The progress bar of long CPU work on stderr (planet export, planet stats): redrawn in place on a
-// terminal (at most 5 times a second), else a line at most every 10 s, so that logs stay short
-// and a quick run prints nothing there. `label` starts the line ("export heightmap 2048x1024");
-// call it as parallelFor's progress callback.
+// The progress bar of long work on stderr (planet export, planet stats, a video of planet render):
+// redrawn in place on a terminal (at most 5 times a second), else a line at most every 10 s, so
+// that logs stay short and a quick run prints nothing there. `label` starts the line ("export
+// heightmap 2048x1024"), `unit` names what is counted; call it as parallelFor's progress callback.
 class ProgressLine {
  public:
-  explicit ProgressLine(std::string label);
+  explicit ProgressLine(std::string label, std::string unit = "heights");
   ~ProgressLine();
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
   void operator()(size_t done, size_t total);
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   bool interactive_;
   bool printed_ = false;
   std::chrono::steady_clock::time_point start_, lastLine_;

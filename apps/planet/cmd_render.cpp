@@ -1,4 +1,5 @@
-// planet render: one frame of a preset, offscreen (lavapipe or GPU), written to a PNG.
+// planet render: one frame of a preset or a scene, offscreen (lavapipe or GPU), written to a PNG;
+// with --path, a video of a camera path (cmd_render_video.cpp).
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -6,8 +7,10 @@
 #include <fmt/format.h>
 
 #include "cli_common.h"
+#include "cmd_render.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "export/video_file.h"
 #include "planet/scene_description.h"
 #include "planet/terrain_height.h"
 #include "render/renderer.h"
@@ -15,24 +18,6 @@
 
 namespace planet::cli {
 namespace {
-
-struct RenderCommand {
-  std::string preset{kDefaultPresetName};
-  std::string scene;
-  std::string lookAt;
-  std::string camera;
-  std::string sun;
-  std::string size = "960x540";
-  std::string out = "planet.png";
-  std::optional<uint64_t> seed;
-  double fovDeg = 60.0;
-  bool wireframe = false;
-  bool noPatches = false;
-  double timeS = 0.0;
-  double exposure = SkySettings{}.exposure;
-  bool noClouds = false;
-  bool noWater = false;
-};
 
 void printTimings(const RenderResult& result) {
   std::string times;
@@ -131,6 +116,12 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.sky.exposure = cmd.exposure;
   settings.sky.clouds = !cmd.noClouds;
   settings.terrain.water = !cmd.noWater;
+  if (sub.count("--path")) return runVideoRender(global, cmd, sub, settings);
+  for (const char* option : {"--frames", "--fps", "--path-body"})
+    if (sub.count(option))
+      throw UsageError(fmt::format("{} needs --path (it belongs to a video of a camera path)", option));
+  if (videoFormatOf(cmd.out))
+    throw UsageError(fmt::format("--out {} names a video: give the camera path to fly with --path FILE", cmd.out));
   checkOutputFile("--out", cmd.out);
   if (!cmd.scene.empty() || sub.count("--scene")) return runSceneRender(global, cmd, sub, settings);
   if (sub.count("--look-at")) throw UsageError("--look-at needs --scene (it names a body of the scene)");
@@ -188,7 +179,18 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_option("--sun", cmd->sun,
                   "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]");
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
-  sub->add_option("--out", cmd->out, "PNG file to write (replaced atomically)")->capture_default_str();
+  sub->add_option("--out", cmd->out,
+                  "PNG file to write (replaced atomically); with --path a video: .mp4 (H.264), .webm (VP9) or .gif")
+      ->capture_default_str();
+  sub->add_option("--path", cmd->path,
+                  "Render a camera path file (format: planet bench --print-path) as a video, through the ffmpeg "
+                  "program; with --scene the path flies over --path-body");
+  sub->add_option("--frames", cmd->frames,
+                  "With --path: frames, spread evenly over the path [default: real time, the path's duration x "
+                  "--fps + 1]");
+  sub->add_option("--fps", cmd->fps, "With --path: frames per second of the video")->capture_default_str();
+  sub->add_option("--path-body", cmd->pathBody,
+                  "With --scene and --path: the body the path flies over [default: the first]");
   sub->add_option("--seed", cmd->seed, "Added to every layer's seed: another planet of the same kind");
   sub->add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str();
   sub->add_flag("--wireframe", cmd->wireframe, "Draw triangle edges only (debug)");

@@ -6,8 +6,10 @@ std::vector<SceneBodyView> sceneBodyViews(const std::vector<BodyState>& states) 
   std::vector<SceneBodyView> views;
   for (const BodyState& state : states) {
     const double distance = glm::length(state.positionM);
+    // A body at the sun's centre (no orbit reaches it: scene_description.h) keeps the defaults.
     views.push_back({state.positionM, state.bodyToScene,
-                     distance > 0.0 ? -state.positionM / distance : glm::dvec3(0.0, 0.0, 1.0)});
+                     distance > 0.0 ? -state.positionM / distance : glm::dvec3(0.0, 0.0, 1.0),
+                     distance > 0.0 ? distance : kAstronomicalUnitM});
   }
   return views;
 }

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -103,6 +104,79 @@ ProcessResult runProcess(const std::vector<std::string>& argv, std::string_view 
   }
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+FedProcess::FedProcess(const std::vector<std::string>& argv) {
+  Pipe in;
+  errorFile_ = ::memfd_create("planet-child-stderr", MFD_CLOEXEC);
+  if (errorFile_ < 0) throw Error(std::string("cannot create a file for a program's errors: ") + std::strerror(errno));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in.fd[0], STDIN_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, errorFile_, STDERR_FILENO);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  const int spawnError = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawnError != 0) return;
+  started_ = true;
+  pid_ = pid;
+  input_ = in.fd[1];
+  in.fd[1] = -1;  // kept open here; the read end closes with `in`
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &previousSigpipe_);
+}
+
+FedProcess::~FedProcess() {
+  if (input_ >= 0) ::close(input_);
+  if (pid_ > 0) {
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+  if (started()) ::sigaction(SIGPIPE, &previousSigpipe_, nullptr);
+  if (errorFile_ >= 0) ::close(errorFile_);
+}
+
+bool FedProcess::write(std::string_view data) {
+  while (!data.empty()) {
+    if (input_ < 0) return false;
+    const ssize_t n = ::write(input_, data.data(), data.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;  // EPIPE: it closed its input
+    data.remove_prefix(size_t(n));
+  }
+  return true;
+}
+
+int FedProcess::finish() {
+  if (input_ >= 0) ::close(input_);
+  input_ = -1;
+  if (pid_ <= 0) return -1;
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;  // reaped: nothing left for the destructor to kill
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string FedProcess::errorOutput() const {
+  std::string text;
+  if (errorFile_ < 0) return text;
+  char buffer[4096];
+  for (off_t offset = 0;;) {
+    const ssize_t n = ::pread(errorFile_, buffer, sizeof buffer, offset);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    text.append(buffer, size_t(n));
+    offset += n;
+  }
+  return text;
 }
 
 }  // namespace planet

@@ -25,6 +25,9 @@ inline constexpr Range kPeriodRangeS{1.0, 1e12};
 inline constexpr Range kGmRangeM3S2{1.0, 1e22};
 inline constexpr Range kTiltRangeDeg{-180.0, 180.0};
 inline constexpr double kSunGmM3S2 = 1.32712440018e20;  // the Sun's gravitational parameter
+// The astronomical unit (IAU 2012): a planet preset is lit as at this distance from the sun
+// (reference/sunlight.h).
+inline constexpr double kAstronomicalUnitM = 1.495978707e11;
 
 struct BodyDescription {
   std::string name;                 // unique in the scene; the viewer and --camera BODY:... use it

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "reference/sunlight.h"
 #include "render/ring_pass.h"
 #include "render/sky_tables.h"
 #include "render/star_pass.h"
@@ -266,6 +267,9 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     t.width = settings_.width;
     t.height = settings_.height;
     t.sunDirection = glm::transpose(body.bodyToScene) * body.sunDirection;
+    const Sunlight sun = sunlightAtDistance(body.sunDistanceM);
+    t.sunIrradianceScale = sun.irradianceScale;
+    t.sunAngularRadiusRad = sun.angularRadiusRad;
     t.timeS = view.timeS;
   }
   // One depth buffer: every body takes the nearest near plane. The primary body's own rule
@@ -307,7 +311,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     ring.nearPlaneM = nearPlane;
     ring.width = t.width;
     ring.height = t.height;
-    ring.sunIrradiance = gpu::kSunIrradiance * bodies_[i].terrain->settings().sunIntensity;
+    ring.sunIrradiance = gpu::kSunIrradiance * bodies_[i].terrain->settings().sunIntensity * t.sunIrradianceScale;
+    ring.sunAngularRadiusRad = t.sunAngularRadiusRad;
     ring.ambient = bodies_[i].terrain->settings().ambient;
     bodies_[i].rings->prepare(ring, slot);
   }
@@ -324,6 +329,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     skyView.localToPlanet = bodyFrame.viewOrientation.localToPlanet;
     skyView.forward = planetToLocal * t.camera.forward;
     skyView.sunLocal = planetToLocal * t.sunDirection;
+    skyView.sunIrradianceScale = t.sunIrradianceScale;
+    skyView.sunAngularRadiusRad = t.sunAngularRadiusRad;
     skyView.cameraPlanet = t.camera.position;
     skyView.altitudeM = bodyFrame.viewOrientation.altitudeM;
     skyView.nearPlaneM = nearPlane;

@@ -86,6 +86,8 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   gpu::SkyUniforms& u = uniformData_;
   u = gpu::SkyUniforms{};
   u.atmosphere = tables_.atmosphere();
+  u.atmosphere.radii.z = float(view.sunAngularRadiusRad);
+  u.atmosphere.ozoneSun.y *= float(view.sunIrradianceScale);
   u.clipToLocal = glm::mat4(glm::inverse(view.viewProjection));
   u.localToPlanet = glm::mat4(glm::mat3(view.localToPlanet));
   u.camera = glm::vec4(float(view.altitudeM), float(view.nearPlaneM), float(settings_.exposure), float(view.timeS));
@@ -94,7 +96,8 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const bool clouds = settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled;
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
   tables_.clouds().writeUniforms(u, view.timeS);
-  for (int k = 0; k < kSkyIrradianceSamples; ++k) u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)];
+  for (int k = 0; k < kSkyIrradianceSamples; ++k)
+    u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
   const double lowest = planet_.hasOcean ? planet_.seaLevelM : view.lowestSurfaceM;
   u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, 0.0f, 0.0f);

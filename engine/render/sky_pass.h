@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "planet/planet_description.h"
+#include "reference/atmosphere_model.h"
 #include "shared/sky_params.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
@@ -37,6 +38,10 @@ struct SkyView {
   glm::dmat3 localToPlanet;
   glm::dvec3 forward;       // local
   glm::dvec3 sunLocal;      // local, unit
+  // The sun at the body's distance (reference/sunlight.h): irradiance as a share of
+  // gpu::kSunIrradiance (the sky's radiance is linear in it) and the disc's angular radius.
+  double sunIrradianceScale = 1.0;
+  double sunAngularRadiusRad = kSunAngularRadiusRad;
   glm::dvec3 cameraPlanet;  // planet frame, m
   double altitudeM = 0.0;   // above the radius sphere
   double nearPlaneM = 1.0;

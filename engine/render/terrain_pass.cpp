@@ -374,14 +374,22 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.shading = glm::vec4(float(std::sin(c.iceCapLatitudeDeg * std::numbers::pi / 180.0)), float(int(c.scheme)),
                         frame_.wireframe ? 1.0f : 0.0f, float(settings_.ambient));
   const glm::dvec3 sunLocal = glm::transpose(o.localToPlanet) * view.sunDirection;
-  u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(gpu::kSunIrradiance * settings_.sunIntensity));
+  // The sun at the body's distance (reference/sunlight.h): its direct light, the sky light it
+  // feeds (linear in it), and the disc's size for the horizon fade and the ring's penumbra.
+  const double scale = view.sunIrradianceScale;
+  frame_.sunIrradiance = gpu::kSunIrradiance * settings_.sunIntensity * scale;
+  frame_.sunAngularRadiusRad = view.sunAngularRadiusRad;
+  u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(frame_.sunIrradiance));
   u.water = waterUniform(planet_.water, frame_.waterDrawn);
   if (ring_) {
     u.cameraPlanet = glm::vec4(glm::vec3(view.camera.position), 1.0f);
     u.ring = *ring_;
+    u.ring.variation.w = float(view.sunAngularRadiusRad);
   }
   u.atmosphere = sky_.atmosphere();
-  for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)];
+  u.atmosphere.radii.z = float(view.sunAngularRadiusRad);
+  u.atmosphere.ozoneSun.y *= float(scale);
+  for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)] * float(scale);
   u.colorDeepWater = toVec4(c.deepWater);
   u.colorShallowWater = toVec4(c.shallowWater);
   u.colorBeach = toVec4(c.beach);

@@ -17,6 +17,7 @@
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_rebase.h"
 #include "camera/camera.h"
+#include "reference/atmosphere_model.h"
 #include "render/patch_layout.h"
 #include "render/water_pass.h"
 #include "shared/render_params.h"
@@ -92,6 +93,10 @@ struct TerrainFrameInfo {
   bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
   bool wireframe = false;   // drawn as triangle edges
   bool waterDrawn = false;  // the water sphere is drawn
+  // The sun the shaders got: irradiance at the top of the atmosphere (gpu::kSunIrradiance units)
+  // and the disc's angular radius.
+  double sunIrradiance = 0.0;
+  double sunAngularRadiusRad = 0.0;
   PatchLayout patchLayout;  // empty when the patch textures are not sampled
 };
 
@@ -108,6 +113,10 @@ struct TerrainView {
   uint32_t width = 960;
   uint32_t height = 540;
   glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // planet frame, unit
+  // The sun as seen from the body (reference/sunlight.h): irradiance as a share of
+  // gpu::kSunIrradiance (TerrainSettings::sunIntensity scales it further) and the disc's radius.
+  double sunIrradianceScale = 1.0;
+  double sunAngularRadiusRad = kSunAngularRadiusRad;
   double timeS = 0.0;                      // animation time (waves)
   // The near plane is 0.25 × the height above the ground, at most this: the scene renderer
   // draws several bodies into one depth buffer and gives them all the nearest body's plane.
