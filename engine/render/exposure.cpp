@@ -1,6 +1,11 @@
 #include "render/exposure.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
 
 #include "common/definitions.h"
 
@@ -19,10 +24,24 @@ struct ExposureKernel {
 
 }  // namespace
 
-ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr) {
+ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height) {
+  if (hdr.size() != size_t(width) * height)
+    throw Error(fmt::format("an HDR frame of {}x{} has {} pixels, not {}", width, height, size_t(width) * height,
+                            hdr.size()));
   ExposureKernel kernel;
   ExposureHistogram histogram{};
-  for (const glm::vec4& c : hdr) ++histogram[kernel.exposureBin(kernel.exposureLuminance(c.r, c.g, c.b))];
+  for (uint32_t by = 0; by < height; by += 2)
+    for (uint32_t bx = 0; bx < width; bx += 2) {
+      // As shaders/luminance_histogram.comp adds them: row by row within the block.
+      float sum = 0.0f, count = 0.0f;
+      for (uint32_t y = by; y < std::min(by + 2, height); ++y)
+        for (uint32_t x = bx; x < std::min(bx + 2, width); ++x) {
+          const glm::vec4& c = hdr[size_t(y) * width + x];
+          sum += kernel.exposureLuminance(c.r, c.g, c.b);
+          count += 1.0f;
+        }
+      ++histogram[kernel.exposureBin(sum / count)];
+    }
   return histogram;
 }
 

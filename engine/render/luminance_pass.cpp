@@ -93,7 +93,7 @@ void LuminancePass::record(VkCommandBuffer cmd, uint32_t slot, double stepS, vk:
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot], 0, nullptr);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, histogramPipeline_.get());
-  const uint32_t group = gpu::kExposureWorkgroupSize;
+  const uint32_t group = 2 * gpu::kExposureWorkgroupSize;  // pixels: each invocation measures a 2 × 2 block
   vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
   // The exposure dispatch reads the finished histogram.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

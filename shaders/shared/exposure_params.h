@@ -15,7 +15,7 @@ GPU_NAMESPACE_BEGIN
 GPU_CONST uint kExposureBins = 256u;
 GPU_CONST float kExposureBinsPerStop = 8.0f;
 GPU_CONST float kExposureMinLog2 = -20.0f;    // 1e-6 of the sun's irradiance: darker is black on any exposure
-GPU_CONST uint kExposureWorkgroupSize = 16u;  // 16 × 16 pixels per histogram group
+GPU_CONST uint kExposureWorkgroupSize = 16u;  // 16 × 16 blocks of 2 × 2 pixels per histogram group
 
 // The part of the frame the exposure is measured on: black pixels (bin 0: space, the night sky
 // between the stars, an airless body's sky) are not measured; of the others, ranked by
