@@ -1,10 +1,14 @@
 #version 450
 // HDR → display (issue 4, point 2): exposure, then Narkowicz's fit of the ACES filmic curve
-// (2015); the sRGB target encodes the result.
+// (2015); the sRGB target encodes the result. The exposure is the fixed one (params.x), or with
+// eye adaptation (issue 21, point 4; params.y = 1) the one the luminance pass wrote this frame.
 #extension GL_GOOGLE_include_directive : require
 
+#include "shared/exposure_params.h"
+
 layout(set = 0, binding = 0, rgba16f) uniform readonly image2D hdr;
-layout(push_constant) uniform Push { vec4 params; };  // x: exposure
+layout(set = 0, binding = 1, std430) readonly buffer Exposure { ExposureState exposure; };
+layout(push_constant) uniform Push { vec4 params; };  // x: fixed exposure (1 with adaptation), y: 1 to adapt
 
 layout(location = 0) out vec4 outColor;
 
@@ -12,5 +16,6 @@ vec3 filmic(vec3 x) { return clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0
 
 void main() {
   vec3 c = imageLoad(hdr, ivec2(gl_FragCoord.xy)).rgb;
-  outColor = vec4(filmic(c * params.x), 1.0f);
+  float scale = params.x * mix(1.0f, exposure.values.x, params.y);
+  outColor = vec4(filmic(c * scale), 1.0f);
 }

@@ -50,15 +50,30 @@ void checkFieldOfView(double degrees) {
 
 namespace {
 
+// A leading '+' is accepted (std::from_chars does not take one).
+std::string_view withoutPlus(std::string_view text) {
+  return text.size() > 1 && text[0] == '+' ? text.substr(1) : text;
+}
+
+}  // namespace
+
+ExposureChoice parseExposure(const std::string& text) {
+  if (text == "auto") return {true, 0.0};
+  const std::string_view digits = withoutPlus(text);
+  double value = 0.0;
+  auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const bool number = !digits.empty() && ec == std::errc() && ptr == digits.data() + digits.size();
+  if (!number || !(value > 0.0 && value <= kMaxExposure))
+    throw UsageError(fmt::format("--exposure must be 'auto' or a number in (0, 1e6], got '{}'", text));
+  return {false, value};
+}
+
+namespace {
+
 std::string withoutControlCharacters(std::string text) {
   for (char& c : text)
     if (uint8_t(c) < 0x20 || c == 0x7f) c = '?';
   return text;
-}
-
-// A leading '+' is accepted (std::from_chars does not take one).
-std::string_view withoutPlus(std::string_view text) {
-  return text.size() > 1 && text[0] == '+' ? text.substr(1) : text;
 }
 
 // The check of one numeric option's text. CLI11 2.1 reads '' as 0 (or as "not given" for an

@@ -59,6 +59,15 @@ void parseSize(const std::string& text, uint32_t& width, uint32_t& height);
 // --fov in degrees: in (0, kRenderMaxFovDeg], else UsageError naming the value.
 void checkFieldOfView(double degrees);
 
+// --exposure (render, bench, view): "auto" (eye adaptation from the frame's luminance) or a
+// fixed number in (0, kMaxExposure]; anything else is a UsageError quoting the text.
+inline constexpr double kMaxExposure = 1e6;  // the message says 1e6
+struct ExposureChoice {
+  bool automatic = false;
+  double fixed = 0.0;  // when not automatic
+};
+ExposureChoice parseExposure(const std::string& text);
+
 // Makes every numeric option of `command` (CLI11 types INT, UINT and FLOAT) check its text
 // first, so that '' and '-1' for an unsigned count are one UsageError naming the option and
 // the text; call after the options are added.

@@ -12,6 +12,7 @@
 #include "core/file.h"
 #include "frame_plot.h"
 #include "bench/frame_bench.h"
+#include "render/sky_pass.h"
 
 namespace planet::cli {
 namespace {
@@ -24,6 +25,7 @@ struct FrameBenchCommand {
   double fovDeg = 60.0;
   double flightFps = 60.0;
   std::string sun;
+  std::string exposure = fmt::format("{:g}", SkySettings{}.exposure);
   std::string path;
   std::string json;
   std::string csv;
@@ -77,6 +79,9 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   o.fovYDeg = cmd.fovDeg;
   o.compare = cmd.compare;
   o.patches = !cmd.noPatches;
+  const ExposureChoice exposure = parseExposure(cmd.exposure);
+  o.autoExposure = exposure.automatic;
+  if (!exposure.automatic) o.exposure = exposure.fixed;
   for (const CLI::Option* option : cmd.fileOptions)
     if (option->count() && option->as<std::string>().empty())
       throw UsageError(option->get_name() + " must name a file");
@@ -140,6 +145,11 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
           ->capture_default_str());
   add(bench.add_option("--sun", cmd->sun,
                        "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));
+  add(bench
+          .add_option("--exposure", cmd->exposure,
+                      "HDR exposure before the tonemap: a number, or auto (each frame from its own luminance; the "
+                      "luminance pass is timed)")
+          ->capture_default_str());
   addFile(bench.add_option("--path", cmd->path,
                            "Camera path file: lines 'time_s lat lon height_m heading pitch' (height above the ground), "
                            "# comments [default: a descent from 40,000 km to 2 m, then a traverse at 300 m/s]"));

@@ -19,6 +19,17 @@
 namespace planet::cli {
 namespace {
 
+// With --exposure auto: what the frame was measured at, so that a picture can be reproduced with
+// a fixed --exposure.
+void printExposure(const RenderResult& result) {
+  if (!result.exposure) return;
+  const ExposureReport& e = *result.exposure;
+  fmt::print("exposure: auto {:.4g} (trimmed log-average luminance {:.4g}{})\n", e.exposure, std::exp2(e.log2Luminance),
+             e.exposure >= gpu::kExposureMax * 0.9999   ? ", at the largest exposure"
+             : e.exposure <= gpu::kExposureMin * 1.0001 ? ", at the smallest exposure"
+                                                        : "");
+}
+
 void printTimings(const RenderResult& result) {
   std::string times;
   for (const vk::GpuTiming& timing : result.timings)
@@ -98,6 +109,7 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   overhead += fmt::format("{}the sun at lat {:.4f} lon {:.4f}", overhead.empty() ? "" : ", ", latitudeDegOf(sun),
                           longitudeDegOf(sun));
   fmt::print("overhead on {}: {}\n", scene.bodies[primary].name, overhead);
+  printExposure(result);
   printTimings(result);
   return finishWithValidation(*context, 0);
 }
@@ -111,9 +123,9 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.terrain.patches = !cmd.noPatches;
   if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
     throw UsageError(fmt::format("--time must be a number of seconds within ±1e9, got {}", cmd.timeS));
-  if (!(cmd.exposure > 0.0 && cmd.exposure <= 1e6))
-    throw UsageError(fmt::format("--exposure must be in (0, 1e6], got {}", cmd.exposure));
-  settings.sky.exposure = cmd.exposure;
+  const ExposureChoice exposure = parseExposure(cmd.exposure);
+  settings.autoExposure = exposure.automatic;
+  if (!exposure.automatic) settings.sky.exposure = exposure.fixed;
   settings.sky.clouds = !cmd.noClouds;
   settings.terrain.water = !cmd.noWater;
   if (sub.count("--path")) return runVideoRender(global, cmd, sub, settings);
@@ -158,6 +170,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   fmt::print("triangles drawn: {} (rings {}..{} of {}), vertices evaluated: {}, patch levels built: {}\n", t.triangles,
              t.rings.firstRing, t.rings.lastRing, settings.terrain.mesh.levels * settings.terrain.mesh.ringsPerLevel,
              t.verticesEvaluated, t.patchLevelsRebuilt);
+  printExposure(result);
   printTimings(result);
   return finishWithValidation(*context, 0);
 }
@@ -198,7 +211,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_option("--time", cmd->timeS,
                   "Time in seconds: cloud drift and change, waves; with --scene also the orbits and spins")
       ->capture_default_str();
-  sub->add_option("--exposure", cmd->exposure, "HDR exposure before the tonemap")->capture_default_str();
+  sub->add_option("--exposure", cmd->exposure,
+                  "HDR exposure before the tonemap: a number, or auto (from the frame's own luminance, as the eye "
+                  "adapts)")
+      ->capture_default_str();
   sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
   checkNumbersAsText(*sub);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "cli_common.h"
 #include "render/renderer.h"
@@ -26,7 +27,7 @@ struct RenderCommand {
   bool wireframe = false;
   bool noPatches = false;
   double timeS = 0.0;
-  double exposure = SkySettings{}.exposure;
+  std::string exposure = fmt::format("{:g}", SkySettings{}.exposure);  // a number or "auto"
   bool noClouds = false;
   bool noWater = false;
   // A video of a camera path (--path, --frames, --fps; with --scene also --path-body).

@@ -29,6 +29,7 @@ struct ViewCommand {
   std::string screenshot;
   std::string path;
   bool hideUi = false;
+  std::string exposure = "auto";
 };
 
 constexpr uint32_t kMaxFrames = 100'000'000;
@@ -48,6 +49,9 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   if (sub.count("--path") && cmd.path.empty()) throw UsageError("--path must name a file");
   options.screenshot = cmd.screenshot;
   options.hideUi = cmd.hideUi;
+  const ExposureChoice exposure = parseExposure(cmd.exposure);
+  options.autoExposure = exposure.automatic;
+  if (!exposure.automatic) options.exposure = exposure.fixed;
   options.device = global.device;
   options.validation = global.validation;
   if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
@@ -122,6 +126,9 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   sub->add_option("--path", cmd->path,
                   "Play a camera path file (format: planet bench --print-path); with --frames, spread over them");
   sub->add_flag("--hide-ui", cmd->hideUi, "Start with the panel hidden (F2 shows it)");
+  sub->add_option("--exposure", cmd->exposure,
+                  "HDR exposure before the tonemap: auto (adapts to the view as the eye does) or a fixed number")
+      ->capture_default_str();
   sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runView(global, *cmd, *sub); });

@@ -19,6 +19,7 @@
 #include "planet/planet_description.h"
 #include "camera/camera.h"
 #include "camera/camera_path.h"
+#include "render/sky_pass.h"
 #include "render/terrain_pass.h"
 #include "vk/timer.h"
 
@@ -40,6 +41,10 @@ struct FrameBenchOptions {
   SunPose sun;
   bool compare = false;  // also run every other BenchMode
   bool patches = true;   // patch textures (off: vertex normals only, like planet render --no-patches)
+  // Eye adaptation (planet render --exposure auto): each frame measured and exposed on its own
+  // (the luminance pass runs and is timed); else the fixed exposure.
+  bool autoExposure = false;
+  double exposure = SkySettings{}.exposure;
   // The rate of the flight the timed frames sample. Each timed frame follows an untimed lead-in
   // frame 1 / flightFps s of flight earlier, so that it does the work a frame of a real-time
   // flight at that rate does: what depends on the previous frame (the patch levels that moved,

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "planet/terrain_height.h"
 #include "reference/sunlight.h"
+#include "render/luminance_pass.h"
 #include "render/ring_pass.h"
 #include "render/sky_tables.h"
 #include "render/star_pass.h"
@@ -75,7 +76,10 @@ Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& b
     stars_ = std::make_unique<StarPass>(context, stars, kHdrFormat, kDepthFormat);
     break;
   }
-  tonemap_ = std::make_unique<TonemapPass>(context, kColorFormat, settings.sky.exposure);
+  // Made whether or not the frames adapt, so that the viewer can switch without a rebuild.
+  luminance_ = std::make_unique<LuminancePass>(context);
+  tonemap_ = std::make_unique<TonemapPass>(context, kColorFormat, settings.sky.exposure, luminance_->exposure());
+  tonemap_->setAdapting(settings.autoExposure);
   createTargets();
   if (context.timestampValidBits) {
     for (vk::GpuTimer& timer : timers_) timer.create(context, timingScopes());
@@ -89,7 +93,7 @@ uint32_t Renderer::Body::timingScopes() const {
 }
 
 uint32_t Renderer::timingScopes() const {
-  uint32_t scopes = (stars_ ? StarPass::kTimingScopes : 0) + TonemapPass::kTimingScopes;
+  uint32_t scopes = (stars_ ? StarPass::kTimingScopes : 0) + LuminancePass::kTimingScopes + TonemapPass::kTimingScopes;
   for (const Body& body : bodies_) scopes += body.timingScopes();
   return scopes;
 }
@@ -127,6 +131,7 @@ void Renderer::createTargets() {
   depth_ = {context_, vk::createImage2D(context_, extent, kDepthFormat,
                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)};
   for (Body& body : bodies_) body.sky->setTargets(*hdr_, *depth_);
+  luminance_->setSource(*hdr_);
   tonemap_->setSource(*hdr_);
 }
 
@@ -148,6 +153,24 @@ void Renderer::setSkySettings(const SkySettings& sky) {
   settings_.sky = sky;
   for (Body& body : bodies_) body.sky->setSettings(sky);
   tonemap_->setExposure(sky.exposure);
+}
+
+void Renderer::setAutoExposure(bool enabled) {
+  if (enabled && !settings_.autoExposure) exposureReset_ = true;
+  settings_.autoExposure = enabled;
+  tonemap_->setAdapting(enabled);
+}
+
+void Renderer::adaptExposureOver(double seconds) {
+  if (!(seconds >= 0.0 && std::isfinite(seconds)))
+    throw Error(fmt::format("exposure adaptation time {} s must be a finite number >= 0", seconds));
+  exposureStepS_ = seconds;
+}
+
+std::optional<ExposureReport> Renderer::lastExposure(uint32_t slot) const {
+  vk::checkFrameSlot(slot);
+  if (!settings_.autoExposure) return std::nullopt;
+  return luminance_->report(slot);
 }
 
 std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
@@ -400,6 +423,13 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     bodies_[composeOrder_[k]].sky->recordCompose(cmd, timer);
   }
+  // Eye adaptation measures the composed frame, before the tonemap applies what it found.
+  const double exposureStep = exposureReset_ ? -1.0 : exposureStepS_;
+  exposureStepS_ = -1.0;
+  if (settings_.autoExposure) {
+    luminance_->record(cmd, slot, exposureStep, timer);
+    exposureReset_ = false;
+  }
   // The tonemap's fragments read what the compose pass wrote.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
@@ -433,6 +463,7 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
   result.cameraRaised = prepared.cameraRaised;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });
   result.timings = lastTimings(0);
+  result.exposure = lastExposure(0);
   result.terrain = bodies_[primary_].terrain->frame();
   std::vector<uint8_t> pixels = vk::readbackImage(context_, *color_);
   result.image.width = settings_.width;

@@ -1,8 +1,9 @@
 // Headless rendering of a planet into an offscreen target (issues 3 and 4): one frame is CPU
 // preparation in double; compute (sky tables once, heights, normals, patch textures); the
 // terrain and water draws into an HDR target with a reversed-Z float depth buffer; the sky
-// compose pass (atmosphere, clouds, sun, star fading); the tonemap into an sRGB target, read
-// back as RGBA8. Every pass is timed. The viewer records the same passes into its swapchain.
+// compose pass (atmosphere, clouds, sun, star fading); with eye adaptation the luminance pass
+// that measures the frame; the tonemap into an sRGB target, read back as RGBA8. Every pass is
+// timed. The viewer records the same passes into its swapchain.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include "planet/scene_description.h"
 #include "camera/camera.h"
 #include "camera/scene_view.h"
+#include "render/exposure.h"
 #include "render/sky_pass.h"
 #include "render/terrain_pass.h"
 #include "vk/image.h"
@@ -39,6 +41,10 @@ struct RenderSettings {
   double fovYDeg = 60.0;
   TerrainSettings terrain;
   SkySettings sky;
+  // Eye adaptation (issue 21, point 4): the exposure from the frame's own luminance
+  // (LuminancePass) instead of sky.exposure, which then only sets where the stars fade (the sky
+  // brightness at which they go, as the eye loses them, does not depend on the camera's exposure).
+  bool autoExposure = false;
 };
 
 // Throws planet::Error naming the first bad value (size 0 or above kRenderMaxSize, field of
@@ -50,10 +56,12 @@ struct RenderResult {
   std::vector<glm::vec4> hdr;  // the HDR frame before the tonemap (when asked for)
   TerrainFrameInfo terrain;
   std::vector<vk::GpuTiming> timings;  // per pass, in recording order
+  std::optional<ExposureReport> exposure;  // with autoExposure: what the luminance pass measured and applied
   CameraPose camera;                   // as rendered (raised when it was below the ground)
   bool cameraRaised = false;
 };
 
+class LuminancePass;
 class RingPass;
 class SkyTables;
 class StarPass;
@@ -109,12 +117,24 @@ class Renderer {
   // without timestamps or before that slot's first frame).
   vk::Image& output() { return *color_; }
   std::vector<vk::GpuTiming> lastTimings(uint32_t slot) const;
+  // With autoExposure: what the luminance pass measured and applied in the last frame recorded
+  // for `slot` (read after its fence signalled; zeros before that slot's first frame). Without:
+  // nothing.
+  std::optional<ExposureReport> lastExposure(uint32_t slot) const;
   // New target size (the window was resized); the passes keep everything else. Call only
   // when no submitted frame still uses the targets.
   void resize(uint32_t width, uint32_t height);
   // Exposure, clouds and sky samples change without rebuilding (the compose pass reads them
   // per frame).
   void setSkySettings(const SkySettings& sky);
+  // Eye adaptation on or off (RenderSettings::autoExposure), from the next record(). Turned on,
+  // the first frame takes its own exposure outright.
+  void setAutoExposure(bool enabled);
+  // The next record() adapts the exposure toward its frame's over `seconds` of wall time from
+  // the last frame's (the viewer, every frame); without a call a frame takes its own exposure
+  // outright, so that a render is the same whatever came before it. Throws planet::Error for a
+  // negative or non-finite time.
+  void adaptExposureOver(double seconds);
 
   // The camera after the eye-height rule: an altitude below the ground (or the water) plus
   // kMinEyeHeightM is raised to it.
@@ -163,7 +183,10 @@ class Renderer {
   size_t primary_ = 0;
   std::vector<size_t> composeOrder_;  // bodies whose compose pass runs, far to near (the primary last)
   std::unique_ptr<StarPass> stars_;   // null when no preset has stars
+  std::unique_ptr<LuminancePass> luminance_;  // before the tonemap, which reads its exposure
   std::unique_ptr<TonemapPass> tonemap_;
+  double exposureStepS_ = -1.0;  // of the next record(): adaptExposureOver's time, < 0: none
+  bool exposureReset_ = false;   // the next adapted frame takes its own exposure outright
   vk::Owned<vk::Image> hdr_;
   vk::Owned<vk::Image> color_;
   vk::Owned<vk::Image> depth_;

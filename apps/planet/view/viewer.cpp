@@ -54,7 +54,8 @@ class Viewer {
   void waitIdle();
   void handleRequests(UiRequests& requests);
   void saveScreenshot(const std::string& path);
-  bool drawFrame(uint32_t frameIndex);
+  // `stepS`: the time since the previous frame, over which the exposure adapts.
+  bool drawFrame(uint32_t frameIndex, double stepS);
 
   ViewOptions options_;
   ViewerSettings settings_;
@@ -74,6 +75,7 @@ class Viewer {
   // HUD.
   ViewerStats stats_;
   std::vector<vk::GpuTiming> passes_;
+  std::optional<ExposureReport> exposure_;
   TerrainFrameInfo lastFrame_;
   std::string status_;
   std::string pendingScreenshot_;
@@ -83,6 +85,8 @@ Viewer::Viewer(const ViewOptions& viewOptions) : options_(viewOptions) {
   const ViewOptions& options = options_;
   settings_.planet = options.planet;
   settings_.fovDeg = options.fovDeg;
+  settings_.autoExposure = options.autoExposure;
+  settings_.exposure = options.exposure;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));
   settings_.mesh = qualityPreset(settings_.quality).mesh;
@@ -190,12 +194,15 @@ void Viewer::handleRequests(UiRequests& r) {
   if (r.screenshot) pendingScreenshot_ = fmt::format("planet-{:%Y%m%d-%H%M%S}.png", fmt::localtime(std::time(nullptr)));
 }
 
-bool Viewer::drawFrame(uint32_t frameIndex) {
+bool Viewer::drawFrame(uint32_t frameIndex, double stepS) {
   const uint32_t slot = frameIndex % kFramesInFlight;
   // The Renderer keeps the data the CPU writes in prepare() per slot: only this slot's last
   // frame must be done with it; the other slot's frame may still execute.
   Renderer& renderer = renderer_->get();
-  if (slots_->wait(slot)) passes_ = renderer.lastTimings(slot);  // the HUD shows the slot's last frame
+  if (slots_->wait(slot)) {  // the HUD shows the slot's last frame
+    passes_ = renderer.lastTimings(slot);
+    exposure_ = renderer.lastExposure(slot);
+  }
   if (submittedAny_ && !pendingScreenshot_.empty()) {
     // The output image is shared by the slots: read it with no frame in flight.
     waitIdle();
@@ -216,6 +223,7 @@ bool Viewer::drawFrame(uint32_t frameIndex) {
   lastFrame_ = prepared.terrain;
 
   const VkCommandBuffer cmd = slots_->begin(slot);
+  renderer.adaptExposureOver(stepS);
   renderer.record(cmd, slot);
   swapchain_->recordBlit(cmd, renderer.output(), imageIndex);
   imgui_->record(cmd, imageIndex);
@@ -281,6 +289,7 @@ int Viewer::run() {
     hud.fps = stats_.fps();
     hud.frameTimesMs = &stats_.recentMs();
     hud.passes = passes_;
+    hud.exposure = exposure_;
     const CameraPose& pose = camera().pose();
     hud.altitudeM = pose.altitudeM;
     hud.heightAboveGroundM = camera().heightAboveGroundM();
@@ -300,7 +309,7 @@ int Viewer::run() {
     imgui_->endFrame();
     handleRequests(requests);
 
-    if (!drawFrame(frame)) continue;
+    if (!drawFrame(frame, stepS)) continue;
     stats_.frameDrawn(frame++, dt, context_->allocator);
     if (options_.frames > 0 && frame >= options_.frames) break;
   }

@@ -27,6 +27,9 @@ struct ViewOptions {
   std::string screenshot;              // save the last frame here (PNG, without the panel)
   std::optional<CameraPath> path;      // play this camera path (with `frames`: spread over them)
   bool hideUi = false;                 // start with the panel hidden (F2 shows it)
+  // Eye adaptation (the default), or a fixed exposure.
+  bool autoExposure = true;
+  double exposure = 10.0;  // SkySettings{}.exposure
   // A scene of several bodies instead of `planet` (planet view --scene): the camera starts on
   // body `sceneBody` at `camera`, the scene's clock at sceneTimeS, running timeScale times real
   // time; T travels to the next body. travelTo starts the autopilot at once (tests, demos).

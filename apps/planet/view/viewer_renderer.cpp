@@ -22,6 +22,7 @@ RenderSettings ViewerRenderer::renderSettings(const ViewerSettings& settings, Vk
   base.terrain.water = settings.water;
   base.sky.clouds = settings.clouds;
   base.sky.exposure = settings.exposure;
+  base.autoExposure = settings.autoExposure;
   RenderSettings render = viewRenderSettings(base, settings.quality, window.width, window.height);
   render.terrain.mesh = settings.mesh;
   return render;
@@ -74,6 +75,7 @@ void ViewerRenderer::apply(const UiRequests& r, ViewerSettings& settings, VkExte
       sky.clouds = settings.clouds;
       sky.exposure = settings.exposure;
       renderer_->setSkySettings(sky);
+      renderer_->setAutoExposure(settings.autoExposure);
     }
     if (r.terrainToggles) applyTerrainToggles(settings);
   }

@@ -124,6 +124,8 @@ void ViewerUi::drawHud(const HudData& hud) {
                        0.0f, top * 1.1f, ImVec2(260, 50));
     }
     for (const vk::GpuTiming& pass : hud.passes) ImGui::Text("  %-10s %7.2f ms", pass.name.c_str(), pass.milliseconds);
+    if (hud.exposure && hud.exposure->exposure > 0.0)
+      ImGui::Text("exposure %.3g (auto, toward %.3g)", hud.exposure->exposure, hud.exposure->target);
     ImGui::Separator();
     ImGui::Text("lat %.4f  lon %.4f", hud.latitudeDeg, hud.longitudeDeg);
     if (hud.altitudeM >= 1e4)
@@ -179,8 +181,11 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
       ImGui::SameLine();
       ImGui::TextDisabled("(off at this quality)");
     }
+    r.skyChanged |= ImGui::Checkbox("auto exposure", &s.autoExposure);
+    ImGui::BeginDisabled(s.autoExposure);
     editDouble("exposure", s.exposure, 0.5, 100.0, "%.2f", ImGuiSliderFlags_Logarithmic);
     r.skyChanged |= ImGui::IsItemEdited();
+    ImGui::EndDisabled();
   }
   if (ImGui::CollapsingHeader("Sun and time", ImGuiTreeNodeFlags_DefaultOpen)) {
     // Local solar time at the camera: noon where the sun stands over the camera's meridian.

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct ViewerSettings {
   bool wireframe = false;
   bool patches = true;
   bool freezeLod = false;
+  // Eye adaptation (issue 21, point 4): the exposure follows the view's luminance; else the
+  // fixed exposure below.
+  bool autoExposure = true;
   double exposure = SkySettings{}.exposure;
   // The sun is fixed in the planet frame: the point it stands over (subsolar point).
   double sunLatitudeDeg = 0.0;
@@ -42,7 +46,7 @@ struct ViewerSettings {
 // What an edit requires.
 struct UiRequests {
   bool rebuild = false;         // planet, mesh or quality: new Renderer
-  bool skyChanged = false;      // exposure, clouds: Renderer::setSkySettings
+  bool skyChanged = false;      // exposure, eye adaptation, clouds: Renderer::setSkySettings, setAutoExposure
   bool terrainToggles = false;  // water, wireframe, freeze-LOD: TerrainPass setters
   bool screenshot = false;
   bool goTo = false;
@@ -58,6 +62,7 @@ struct HudData {
   double fps = 0.0;
   const std::deque<float>* frameTimesMs = nullptr;  // most recent last
   std::vector<vk::GpuTiming> passes;
+  std::optional<ExposureReport> exposure;  // with eye adaptation: the last frame's
   double altitudeM = 0.0;
   double heightAboveGroundM = 0.0;
   double latitudeDeg = 0.0, longitudeDeg = 0.0;

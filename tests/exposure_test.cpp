@@ -1,0 +1,400 @@
+// Eye adaptation (issue 21, point 4): the adaptation step and the trimmed log-average on the
+// CPU (Exposure.*, unit), the luminance pass against that reference and the pictures it gives
+// at noon, twilight and night (ExposureGpu.*, gpu on lavapipe), and --exposure as a user types
+// it (ExposureCli.*, cli).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+#include "core/image_file.h"
+#include "gpu_fixture.h"
+#include "planet/planet_description.h"
+#include "render/exposure.h"
+#include "render/luminance_pass.h"
+#include "render/renderer.h"
+#include "test_support.h"
+#include "vk/commands.h"
+#include "vk/context.h"
+#include "vk/image.h"
+
+namespace planet::test {
+namespace {
+
+using gpu::kExposureBins;
+using gpu::kExposureBinsPerStop;
+using gpu::kExposureKey;
+using gpu::kExposureMax;
+using gpu::kExposureMin;
+
+// A frame of `count` pixels, all of luminance `luminance` (grey).
+std::vector<glm::vec4> greyFrame(size_t count, float luminance) {
+  return std::vector<glm::vec4>(count, glm::vec4(luminance, luminance, luminance, 1.0f));
+}
+
+// The histogram of a frame in which each of `values` fills one 2 × 2 block (the unit the
+// histogram counts): a 2n × 2 frame.
+ExposureHistogram blockHistogram(const std::vector<glm::vec4>& values) {
+  const uint32_t width = uint32_t(2 * values.size());
+  std::vector<glm::vec4> frame(size_t(width) * 2);
+  for (size_t i = 0; i < frame.size(); ++i) frame[i] = values[(i % width) / 2];
+  return exposureHistogram(frame, width, 2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Exposure.* (unit)
+
+// The adaptation is a function of elapsed time only: one step of 1 s, 60 steps of 1/60 s and
+// uneven steps that add up to 1 s land on the same exposure. Float rounding of log2/exp2 at
+// each of 60 steps bounds the spread (about 1e-7 stops a step); 1e-4 relative is 100 times that.
+TEST(Exposure, AdaptationDoesNotDependOnTheFrameRate) {
+  for (const auto& [from, to] : {std::pair{10.0, 120.0}, std::pair{120.0, 3.0}}) {
+    const double oneStep = adaptExposure(from, to, 1.0);
+    double sixtySteps = from;
+    for (int i = 0; i < 60; ++i) sixtySteps = adaptExposure(sixtySteps, to, 1.0 / 60.0);
+    double uneven = from;
+    for (double step : {0.01, 0.3, 0.002, 0.25, 0.038, 0.4}) uneven = adaptExposure(uneven, to, step);
+    EXPECT_NEAR(sixtySteps / oneStep, 1.0, 1e-4) << from << " -> " << to;
+    EXPECT_NEAR(uneven / oneStep, 1.0, 1e-4) << from << " -> " << to;
+    // It moved, but not all the way, and stayed between the two.
+    EXPECT_GT(std::abs(std::log2(oneStep / from)), 0.1);
+    EXPECT_GT(std::abs(std::log2(to / oneStep)), 0.01);
+    EXPECT_GT(oneStep, std::min(from, to));
+    EXPECT_LT(oneStep, std::max(from, to));
+  }
+}
+
+// After five time constants the exposure is within e^−5 (0.7 %) of the way in stops from the
+// target, after 30 s it is there (to float rounding); the eye adapts to a brighter scene (the
+// exposure falls) faster than to a darker one.
+TEST(Exposure, AdaptationConverges) {
+  const double from = 16.0, darker = 64.0, brighter = 2.0;  // 2 and 3 stops away
+  double rising = from, falling = from;
+  for (int i = 0; i < int(5.0 * gpu::kExposureRiseTimeS * 60.0); ++i)
+    rising = adaptExposure(rising, darker, 1.0 / 60.0);
+  for (int i = 0; i < int(5.0 * gpu::kExposureFallTimeS * 60.0); ++i)
+    falling = adaptExposure(falling, brighter, 1.0 / 60.0);
+  EXPECT_NEAR(std::log2(darker / rising), 2.0 * std::exp(-5.0), 0.01);
+  EXPECT_NEAR(std::log2(falling / brighter), 3.0 * std::exp(-5.0), 0.01);
+  EXPECT_NEAR(adaptExposure(from, darker, 30.0) / darker, 1.0, 1e-5);
+  // Half a second: the fall covers more of its stops than the rise does.
+  const double riseShare = std::log2(adaptExposure(from, darker, 0.5) / from) / 2.0;
+  const double fallShare = std::log2(from / adaptExposure(from, brighter, 0.5)) / 3.0;
+  EXPECT_GT(fallShare, riseShare + 0.3);
+  // At the target it stays (to float rounding of log2 and exp2).
+  EXPECT_NEAR(adaptExposure(darker, darker, 0.25) / darker, 1.0, 1e-6);
+}
+
+// The first frame (no exposure yet) and a negative step (planet render) take the target.
+TEST(Exposure, FirstFrameTakesItsOwnExposure) {
+  EXPECT_EQ(adaptExposure(0.0, 42.0, 1.0 / 60.0), 42.0);
+  EXPECT_EQ(adaptExposure(5.0, 42.0, -1.0), 42.0);
+  EXPECT_NEAR(adaptExposure(5.0, 42.0, 0.0) / 5.0, 1.0, 1e-6);  // no time: no change
+}
+
+// A uniform frame is exposed so that its luminance lands on the key (to within half a bin of
+// the histogram, 1/16 stop); black and blinding frames stop at the clamps.
+TEST(Exposure, MeasuredLuminanceMapsToTheKey) {
+  for (float luminance : {0.004f, 0.01f, 0.05f}) {
+    const ExposureReport r = exposureFromHistogram(blockHistogram(greyFrame(1000, luminance)));
+    EXPECT_NEAR(r.log2Luminance, std::log2(luminance), 0.5 / kExposureBinsPerStop) << luminance;
+    EXPECT_NEAR(std::log2(r.exposure * luminance / kExposureKey), 0.0, 0.5 / kExposureBinsPerStop) << luminance;
+    EXPECT_EQ(r.exposure, r.target);
+  }
+  EXPECT_FLOAT_EQ(exposureFromHistogram(blockHistogram(greyFrame(1000, 0.0f))).exposure, kExposureMax);
+  EXPECT_FLOAT_EQ(exposureFromHistogram(blockHistogram(greyFrame(1000, 1e3f))).exposure, kExposureMin);
+}
+
+// The trimming: black (space, the night sky) is not measured however much of the frame it
+// fills, and neither are the darkest half of the rest (shadow) nor the top 2 % (the sun's
+// disc): the measurement is the lit ground's, whatever the others' values.
+TEST(Exposure, BlackShadowAndTheSunDoNotMoveTheMeasurement) {
+  const float ground = 0.01f;
+  for (size_t black : {0, 500, 9000}) {
+    std::vector<glm::vec4> frame = greyFrame(black, 0.0f);
+    for (const auto& [count, luminance] :
+         {std::pair{size_t(400), 1e-5f},                                 // 40 % of the lit: deep shadow
+          std::pair{size_t(585), ground}, std::pair{size_t(15), 2e4f}})  // 1.5 %: the sun's disc
+    {
+      const std::vector<glm::vec4> part = greyFrame(count, luminance);
+      frame.insert(frame.end(), part.begin(), part.end());
+    }
+    const ExposureReport r = exposureFromHistogram(blockHistogram(frame));
+    EXPECT_NEAR(r.log2Luminance, std::log2(ground), 0.5 / kExposureBinsPerStop) << black << " black pixels";
+    // Measured on the lit blocks ranked 50 % .. 98 %.
+    EXPECT_NEAR(r.pixels, 480.0, 1e-3) << black << " black pixels";
+  }
+  // NaN and negative values count as black.
+  std::vector<glm::vec4> odd = greyFrame(10, ground);
+  odd[0] = glm::vec4(std::nanf(""), 0.0f, 0.0f, 1.0f);
+  odd[1] = glm::vec4(-1.0f, -1.0f, -1.0f, 1.0f);
+  EXPECT_EQ(blockHistogram(odd)[0], 2u);
+  // A block's count is its four pixels' mean: a star in one pixel of a black block counts.
+  std::vector<glm::vec4> star = greyFrame(4, 0.0f);
+  star[3] = glm::vec4(0.04f, 0.04f, 0.04f, 1.0f);
+  EXPECT_EQ(exposureHistogram(star, 2, 2)[0], 0u);
+  EXPECT_NEAR(exposureFromHistogram(exposureHistogram(star, 2, 2)).log2Luminance, std::log2(0.01), 0.07);
+  EXPECT_THROW(exposureHistogram(star, 3, 2), Error);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ExposureGpu.* (gpu)
+
+using ExposureGpu = GpuTest;
+
+// The luminance pass over an HDR image with luminances spread log-uniformly over 40 stops
+// (black blocks, the clamps' ends and the open top bin included) counts the same histogram as
+// the CPU reference over the same half floats, and finds the same log-average and exposure. A
+// block can change bin only where lavapipe's log2 and the C library's differ in the last bit at
+// a bin edge: at most 1 in 1,000 may. The average then moves by float summation only (1e-4 stops).
+TEST_F(ExposureGpu, LuminancePassMatchesTheCpuReference) {
+  const VkExtent2D extent{333, 207};  // not a multiple of the 16 × 16 groups
+  std::mt19937 random(21);
+  std::uniform_real_distribution<float> stops(-24.0f, 16.0f), tint(0.5f, 1.5f);
+  std::vector<uint16_t> halves;
+  std::vector<glm::vec4> frame;
+  uint32_t blackBlocks = 0;
+  for (uint32_t i = 0; i < extent.width * extent.height; ++i) {
+    const uint32_t x = i % extent.width, y = i / extent.width;
+    const bool black = (x / 2 + 1000 * (y / 2)) % 17 == 0;  // whole 2 × 2 blocks
+    blackBlocks += black && x % 2 == 0 && y % 2 == 0 ? 1 : 0;
+    const float l = black ? 0.0f : std::exp2(stops(random));
+    glm::vec4 c(l * tint(random), l, l * tint(random), 1.0f);
+    for (int k = 0; k < 4; ++k) halves.push_back(glm::packHalf1x16(c[k]));
+    for (int k = 0; k < 4; ++k) c[k] = glm::unpackHalf1x16(halves[halves.size() - 4 + size_t(k)]);
+    frame.push_back(c);
+  }
+  vk::Image image =
+      vk::createImage2D(context(), extent, VK_FORMAT_R16G16B16A16_SFLOAT,
+                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  vk::uploadImage(context(), image, halves.data(), halves.size() * sizeof(uint16_t), VK_IMAGE_LAYOUT_GENERAL);
+  {
+    LuminancePass pass(context());
+    pass.setSource(image);
+    vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { pass.record(cmd, 1, -1.0, nullptr); });
+    const ExposureHistogram gpuHistogram = pass.readHistogram();
+    const ExposureHistogram cpuHistogram = exposureHistogram(frame, extent.width, extent.height);
+    const uint64_t blocks = uint64_t((extent.width + 1) / 2) * ((extent.height + 1) / 2);
+    uint64_t total = 0, moved = 0;
+    for (uint32_t b = 0; b < kExposureBins; ++b) {
+      total += gpuHistogram[b];
+      moved += uint64_t(std::abs(int64_t(gpuHistogram[b]) - int64_t(cpuHistogram[b])));
+    }
+    EXPECT_EQ(total, blocks);
+    EXPECT_LE(moved, 2 * blocks / 1000) << "blocks in another bin than the CPU's";
+    EXPECT_GE(gpuHistogram[0], blackBlocks);  // and the blocks darker than 2^-20
+    const ExposureReport gpu = pass.report(1);
+    const ExposureReport cpu = exposureFromHistogram(cpuHistogram);
+    EXPECT_NEAR(gpu.log2Luminance, cpu.log2Luminance, 1e-4);
+    EXPECT_NEAR(gpu.exposure / cpu.exposure, 1.0, 1e-4);
+    EXPECT_NEAR(gpu.pixels, cpu.pixels, 1.0);
+    EXPECT_EQ(gpu.exposure, gpu.target);      // a negative step: no adaptation
+    EXPECT_EQ(pass.report(0).exposure, 0.0);  // the other slot recorded nothing
+  }
+  vk::destroyImage(context(), image);
+}
+
+// The frames of the picture tests: 160 × 90 with a small patch set (seconds on lavapipe).
+RenderSettings smallSettings(bool autoExposure) {
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.terrain.patchSettings.resolution = 128;
+  settings.terrain.patchSettings.levelCount = 3;
+  settings.autoExposure = autoExposure;
+  return settings;
+}
+
+// Mean Rec. 709 luma of the display values (0..1) of a frame, and its pixels at 250 or more.
+struct DisplayStats {
+  double mean = 0.0;
+  int saturated = 0;
+};
+DisplayStats displayStats(const Rgba8Image& image, uint32_t y0 = 0, uint32_t y1 = UINT32_MAX) {
+  DisplayStats stats;
+  y1 = std::min(y1, image.height);
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+      stats.mean += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / 255.0;
+      stats.saturated += std::max({p[0], p[1], p[2]}) >= 250 ? 1 : 0;
+    }
+  stats.mean /= double(image.width) * double(y1 - y0);
+  return stats;
+}
+
+// What the frame's luminance pass reported equals the CPU reference over the same HDR frame
+// (read back after the compose pass): the bins of a few pixels may differ at a bin edge (last
+// bit of log2), which moves the average by far less than 1/100 stop.
+void expectReportMatchesCpu(const RenderResult& frame, const char* name) {
+  ASSERT_TRUE(frame.exposure.has_value()) << name;
+  const ExposureReport cpu =
+      exposureFromHistogram(exposureHistogram(frame.hdr, frame.image.width, frame.image.height));
+  EXPECT_NEAR(frame.exposure->log2Luminance, cpu.log2Luminance, 0.01) << name;
+  EXPECT_NEAR(std::log2(frame.exposure->exposure / cpu.exposure), 0.0, 0.01) << name;
+}
+
+// A valley in Earth's mountains at 45.3° N 83° E, looking north 4° up with the sun ahead of the
+// camera (30° azimuth): the sky and the ground share the frame.
+constexpr CameraPose kValley{45.3, 83.0, 0.0, 0.0, 4.0};
+
+// Noon, sunset, twilight (sun 4° below the horizon) and night (30° below) from the ground,
+// fixed exposure against auto. With the fixed default twilight and night are near black
+// (display mean below 0.04, where 0.5 is mid-grey); auto exposure brings twilight up at least
+// four times and into view (its sky and ground at 0.1 .. 0.6), keeps noon and sunset in the
+// middle band (0.25 .. 0.6), and lifts the night too, but the largest exposure keeps it
+// darker than twilight (0.04 .. 0.15): the night ground here is lit only by the preset's fill
+// light, five stops under daylight, and would look like an overcast day at mid-grey.
+TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
+  const PlanetDescription earth = resolvePreset("earth");
+  Renderer renderer(context(), earth, smallSettings(true));
+  struct Case {
+    const char* name;
+    double sunElevationDeg;
+    double autoLow, autoHigh;
+  };
+  const Case cases[] = {{"noon", 55.0, 0.25, 0.6},
+                        {"sunset", 1.0, 0.25, 0.6},
+                        {"twilight", -4.0, 0.1, 0.6},
+                        {"night", -30.0, 0.04, 0.15}};
+  double twilightAuto = 0.0, nightAuto = 0.0;
+  for (const Case& c : cases) {
+    const SunPose sun{30.0, c.sunElevationDeg};
+    renderer.setAutoExposure(true);
+    const RenderResult automatic = renderer.render(kValley, sun, 0.0, true);
+    expectReportMatchesCpu(automatic, c.name);
+    renderer.setAutoExposure(false);
+    const RenderResult fixed = renderer.render(kValley, sun);
+    EXPECT_FALSE(fixed.exposure.has_value());
+    writePng((testOutputDir() / fmt::format("exposure_{}_auto.png", c.name)).string(), automatic.image);
+    writePng((testOutputDir() / fmt::format("exposure_{}_fixed.png", c.name)).string(), fixed.image);
+    const double autoMean = displayStats(automatic.image).mean, fixedMean = displayStats(fixed.image).mean;
+    EXPECT_GE(autoMean, c.autoLow) << c.name << " (exposure " << automatic.exposure->exposure << ")";
+    EXPECT_LE(autoMean, c.autoHigh) << c.name << " (exposure " << automatic.exposure->exposure << ")";
+    if (c.sunElevationDeg < 0.0) {
+      EXPECT_LT(fixedMean, 0.04) << c.name;
+      EXPECT_NEAR(automatic.exposure->exposure, kExposureMax, 1e-3) << c.name;
+    }
+    if (c.sunElevationDeg == -4.0) {
+      EXPECT_GE(autoMean, 4.0 * fixedMean);
+      twilightAuto = autoMean;
+    }
+    if (c.sunElevationDeg == -30.0) nightAuto = autoMean;
+  }
+  EXPECT_LT(nightAuto, twilightAuto);
+}
+
+// Stars under auto exposure, at night over the sea looking 20° up (nothing but the night sky):
+// they neither vanish (more of them show than with the fixed default) nor blow out (the black
+// between them is not measured, so it does not push the exposure up; fewer than 1 in 20 star
+// pixels saturates).
+TEST_F(ExposureGpu, StarsStayVisibleAndUnsaturatedAtNight) {
+  const PlanetDescription earth = resolvePreset("earth");
+  RenderSettings settings = smallSettings(true);
+  settings.width = 320;
+  settings.height = 180;
+  Renderer renderer(context(), earth, settings);
+  const CameraPose pose{20.0, -30.0, 2.0, 135.0, 20.0};
+  const SunPose night{135.0, -30.0};
+  const RenderResult automatic = renderer.render(pose, night);
+  renderer.setAutoExposure(false);
+  const RenderResult fixed = renderer.render(pose, night);
+  writePng((testOutputDir() / "exposure_stars_auto.png").string(), automatic.image);
+  auto starPixels = [](const Rgba8Image& image) {
+    int count = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4)
+      count += std::max({image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]}) >= 40 ? 1 : 0;
+    return count;
+  };
+  const int autoStars = starPixels(automatic.image), fixedStars = starPixels(fixed.image);
+  EXPECT_GE(autoStars, 200);
+  EXPECT_GE(autoStars, fixedStars);
+  EXPECT_LT(displayStats(automatic.image).saturated, autoStars / 20);
+  // The sky between them stays black.
+  EXPECT_LT(displayStats(automatic.image).mean, 0.05);
+}
+
+// planet render --exposure auto is deterministic: a frame's exposure is its own, whatever the
+// renderer drew before (twilight, then noon, then twilight again give identical pixels).
+TEST_F(ExposureGpu, AutoExposureRenderIsTheSameEveryTime) {
+  const PlanetDescription earth = resolvePreset("earth");
+  Renderer renderer(context(), earth, smallSettings(true));
+  const SunPose twilight{30.0, -4.0};
+  const RenderResult first = renderer.render(kValley, twilight);
+  renderer.render(kValley, {30.0, 55.0});
+  const RenderResult again = renderer.render(kValley, twilight);
+  EXPECT_EQ(first.image.pixels, again.image.pixels);
+  EXPECT_EQ(first.exposure->exposure, again.exposure->exposure);
+}
+
+// The viewer's adaptation on the GPU follows the CPU step: after noon (taken outright, the
+// first frame), each night frame 0.1 s later moves the exposure exactly as adaptExposure does,
+// upward but not yet to the night's target.
+TEST_F(ExposureGpu, ViewerAdaptationFollowsTheCpuStep) {
+  const PlanetDescription earth = resolvePreset("earth");
+  Renderer renderer(context(), earth, smallSettings(true));
+  renderer.adaptExposureOver(1.0 / 60.0);
+  const RenderResult noon = renderer.render(kValley, {30.0, 55.0});
+  EXPECT_EQ(noon.exposure->exposure, noon.exposure->target);  // the first frame
+  double previous = noon.exposure->exposure;
+  for (int frame = 0; frame < 3; ++frame) {
+    renderer.adaptExposureOver(0.1);
+    const RenderResult night = renderer.render(kValley, {30.0, -30.0});
+    const ExposureReport& e = *night.exposure;
+    EXPECT_NEAR(e.exposure / adaptExposure(previous, e.target, 0.1), 1.0, 1e-5) << frame;
+    EXPECT_GT(e.exposure, previous * 1.05) << frame;
+    EXPECT_LT(e.exposure, e.target * 0.95) << frame;
+    previous = e.exposure;
+  }
+  EXPECT_THROW(renderer.adaptExposureOver(-1.0), Error);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ExposureCli.* (cli)
+
+std::filesystem::path cliDir() { return processTempDir("exposure_cli"); }
+ShellRun planet(const std::string& args) { return runShell(PLANET_EXE, args, "", cliDir()); }
+
+// A bad --exposure on render, bench and view is one line naming the value, exit code 2,
+// before any Vulkan work or window.
+TEST(ExposureCli, BadExposureIsOneLineNamingIt) {
+  for (const char* command : {"render", "bench", "view"})
+    for (const char* value : {"0", "-1", "bright", "''", "1e7", "nan", "Auto"}) {
+      const ShellRun run = planet(fmt::format("{} --exposure {}", command, value));
+      EXPECT_EQ(run.exitCode, 2) << command << " " << value << ": " << run.err;
+      const std::string shown = std::string(value) == "''" ? "" : value;
+      EXPECT_NE(run.err.find(fmt::format("--exposure must be 'auto' or a number in (0, 1e6], got '{}'", shown)),
+                std::string::npos)
+          << command << " " << value << ": " << run.err;
+      EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    }
+}
+
+// planet render --exposure auto says what it measured, and gives the same bytes twice.
+TEST(ExposureCli, RenderAutoIsDeterministicAndSaysItsExposure) {
+  const std::string common = "render --camera 45.3,83.0,0,0,4 --sun 30,-4 --size 96x54 --exposure auto --out ";
+  const ShellRun first = planet(common + (cliDir() / "a.png").string());
+  if (first.err.find("no Vulkan") != std::string::npos) GTEST_SKIP() << "no Vulkan device";
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  EXPECT_NE(first.out.find("exposure: auto 64 (trimmed log-average luminance"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("at the largest exposure"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find(" luminance "), std::string::npos) << first.out;  // the pass is timed
+  const ShellRun second = planet(common + (cliDir() / "b.png").string());
+  ASSERT_EQ(second.exitCode, 0) << second.err;
+  EXPECT_EQ(readFileBytes(cliDir() / "a.png"), readFileBytes(cliDir() / "b.png"));
+  // A fixed exposure prints no measurement and runs no luminance pass.
+  const ShellRun fixed = planet("render --size 96x54 --out " + (cliDir() / "c.png").string());
+  ASSERT_EQ(fixed.exitCode, 0) << fixed.err;
+  EXPECT_EQ(fixed.out.find("exposure:"), std::string::npos) << fixed.out;
+  EXPECT_EQ(fixed.out.find(" luminance "), std::string::npos) << fixed.out;
+}
+
+}  // namespace
+}  // namespace planet::test
