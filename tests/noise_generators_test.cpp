@@ -171,8 +171,12 @@ TEST(NoiseGenerators, FaultWidthTurnsTheStepIntoAContinuousRamp) {
     if (i > -1000) largestJump = std::max(largestJump, std::abs(value - previous));
     previous = value;
     const double d = std::sin(t) / width;
-    if (d >= 1.0) EXPECT_EQ(value, plane.w) << t;
-    if (d <= -1.0) EXPECT_EQ(value, -plane.w) << t;
+    if (d >= 1.0) {
+      EXPECT_EQ(value, plane.w) << t;
+    }
+    if (d <= -1.0) {
+      EXPECT_EQ(value, -plane.w) << t;
+    }
   }
   EXPECT_NEAR(evaluateCpu(s, glm::vec3(u)), 0.0f, 1e-6f);  // the middle of the ramp, on the circle
   // The ramp's steepest slope is 1.5 r / width per radian: one step of 1e-4 rad rises by at most
