@@ -171,14 +171,14 @@ TEST(Scene, BadInputIsOneLineNamingTheFileLineAndValue) {
                               "semi_major_axis_m = 3e6\nperiod_s = 100\n"),
             "s.toml:13: body 'B' comes within 3e6 m of 'A''s centre, inside it (radii 1737400 + 1737400 m)");
   EXPECT_EQ(sceneError(base + "[[body]]\nname = \"B\"\npreset = \"pluto\"\n"),
-            "s.toml:11: unknown planet preset 'pluto' (built-in: earth, moon, mars, giant; or a FILE.toml)");
+            "s.toml:11: unknown planet preset 'pluto' (built-in: earth, moon, mars, giant, faults, mpd; or a FILE.toml)");
   EXPECT_EQ(sceneError(base + "[[body]]\nname = \"B\"\npreset = \"moon\"\n"), "s.toml:9: missing table [body.orbit] in body 'B'");
   // A preset that is not there, named by a multi-line string (the fuzzer's find): the message
   // stays one line, the newline and tab shown as '?'.
   EXPECT_EQ(sceneError(base + "[[body]]\nname = \"B\"\npreset = \"\"\"\nno/\nsuch\tfile\"\"\"\n"),
             "s.toml:11: cannot read 'no/?such?file': No such file or directory");
   EXPECT_EQ(sceneError(base + "[[body]]\nname = \"B\"\npreset = \"plu\\nto\"\n"),
-            "s.toml:11: unknown planet preset 'plu?to' (built-in: earth, moon, mars, giant; or a FILE.toml)");
+            "s.toml:11: unknown planet preset 'plu?to' (built-in: earth, moon, mars, giant, faults, mpd; or a FILE.toml)");
   EXPECT_EQ(sceneError("body = 3\n[scene]\nname = \"x\"\n"), "s.toml:1: 'body' must be an array of tables [[body]], got integer");
   EXPECT_EQ(sceneError("[scene]\nname = \"x\"\n[planet]\n"), "s.toml:3: unknown table [planet]");
 }

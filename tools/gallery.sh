@@ -6,7 +6,9 @@
 #     sunset and at night (sky, clouds, water and stars: issue 4), the first four beside the same
 #     views of the earth preset before issue 10;
 #   - the moon and mars presets from the ground, the moon from orbit;
-#   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size).
+#   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size);
+#   - seed 000's figures remade (issue 13): random faults after 1, 10, 100 and 1,000 steps,
+#     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes.
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
 out=${1:-docs/gallery}
@@ -72,5 +74,32 @@ for body in earth:45.3,83.0 mars:-5,140 moon:-20,40; do
         --out "$out/matrix_${preset}_${name}_${sun%%:*}.png" > /dev/null
     done
   done
+done
+# Seed 000's figures (issue 13): faults after 1, 10, 100 and 1,000 steps and MPD after 1, 3, 5
+# and 7 levels (tools/gallery/seed000_*.toml with the count written in), and the earth preset
+# in each of seed 000's eight colouring schemes, without air and clouds (half size).
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+for count in 1 10 100 1000; do
+  amplitude=$(awk -v n=$count 'BEGIN { printf "%.0f", 1000 / sqrt(n) }')
+  sed -e "s/= COUNT/= $count/" -e "s/= AMPLITUDE/= $amplitude/" tools/gallery/seed000_faults.toml > "$work/faults.toml"
+  render seed000_faults_$count --preset "$work/faults.toml" --camera 0,60,1e7 --sun 150,50
+done
+for levels in 1 3 5 7; do
+  sed -e "s/= LEVELS/= $levels/" tools/gallery/seed000_mpd.toml > "$work/mpd.toml"
+  render seed000_mpd_$levels --preset "$work/mpd.toml" --camera 30,20,1e7 --sun 150,50
+done
+for scheme in altitude altitude_perturbed noise altitude_noise turbulence earth_like gradient moon_like; do
+  # The earth preset with the scheme, its ground colours (the scheme's palette instead), air
+  # and clouds left out.
+  awk -v scheme=$scheme '
+    /^\[/ { skip = ($0 == "[atmosphere]" || $0 == "[clouds]") }
+    skip { next }
+    /^scheme = / { print "scheme = \"" scheme "\""; next }
+    /^(lowland|highland|cliff|snow) = / { next }
+    { print }' engine/planet/presets/earth.toml > "$work/$scheme.toml"
+  echo "gallery: $out/seed000_scheme_$scheme.png"
+  "$planet" render --size "$matrix_size" --preset "$work/$scheme.toml" --camera 20,-30,8e6 --sun 0,60 \
+    --out "$out/seed000_scheme_$scheme.png" > /dev/null
 done
 echo "gallery: done ($out)"

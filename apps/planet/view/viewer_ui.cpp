@@ -31,22 +31,92 @@ bool editColor(const char* label, glm::vec3& color) {
   return ImGui::IsItemDeactivatedAfterEdit();
 }
 
-bool editLayer(NoiseLayer& layer) {
+// The generators of issue 22 (faults, mpd, mpd_ico) have parameters of their own. Faults get
+// seed 000's "Step" (one more fault) and "Run" (keep adding faults, redrawing after each: the
+// count grows by about 5 % a step, so a run from 1 to 10,000 takes some 190 rebuilds; on
+// lavapipe each takes seconds, on a GPU a fraction of one). `playing` says whether this layer runs.
+bool editGenerator(noise::NoiseSettings& n, bool& playing) {
+  bool done = false;
+  if (n.type == noise::NoiseType::Faults) {
+    ImGui::SliderInt("faults", &n.faults, noise::kMinFaults, noise::kMaxFaults, "%d",
+                     ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+    done |= ImGui::IsItemDeactivatedAfterEdit();
+    if (ImGui::Button("step") && n.faults < noise::kMaxFaults) {
+      ++n.faults;
+      done = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(playing ? "stop" : "run")) playing = !playing;
+    if (playing) {
+      if (n.faults >= noise::kMaxFaults) {
+        playing = false;
+      } else {
+        n.faults = std::min(noise::kMaxFaults, n.faults + std::max(1, n.faults / 20));
+        done = true;
+      }
+    }
+    done |= editDouble("step width (rad)", n.width, 0.0, noise::kMaxFaultWidth, "%.4f",
+                       ImGuiSliderFlags_Logarithmic);
+  } else {
+    playing = false;
+    done |= editInt("levels", n.octaves, noise::kMinMpdLevels, noise::kMaxMpdLevels);
+    done |= editDouble("H", n.H, noise::kMinH, noise::kMaxH);
+    if (ImGui::Checkbox("multifractal", &n.multifractal)) done = true;
+    if (n.multifractal) {
+      double gain = n.gain.value_or(noise::kDefaultGain);
+      if (editDouble("gain", gain, 0.0, noise::kMaxGain)) done = true;
+      if (gain != n.gain.value_or(noise::kDefaultGain)) n.gain = gain;
+    }
+  }
+  int seed = int(std::min<uint32_t>(n.seed, 1u << 30));
+  if (ImGui::InputInt("seed", &seed, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    n.seed = uint32_t(std::max(seed, 0));
+    done = true;
+  }
+  return done;
+}
+
+bool editLayer(NoiseLayer& layer, double radiusM, bool& playing) {
   bool done = false;
   noise::NoiseSettings& n = layer.noise;
   static constexpr noise::NoiseType kTypes[] = {
-      noise::NoiseType::Simplex, noise::NoiseType::Fbm,    noise::NoiseType::Ridged,
-      noise::NoiseType::Hybrid,  noise::NoiseType::Hetero, noise::NoiseType::Cascade,
-      noise::NoiseType::Craters, noise::NoiseType::Damped, noise::NoiseType::Eroded};
+      noise::NoiseType::Simplex, noise::NoiseType::Fbm,    noise::NoiseType::Ridged, noise::NoiseType::Hybrid,
+      noise::NoiseType::Hetero,  noise::NoiseType::Cascade, noise::NoiseType::Craters, noise::NoiseType::Damped,
+      noise::NoiseType::Eroded,  noise::NoiseType::Faults,  noise::NoiseType::Mpd,     noise::NoiseType::MpdIco};
   if (ImGui::BeginCombo("type", noise::noiseTypeName(n.type))) {
     for (noise::NoiseType t : kTypes)
       if (ImGui::Selectable(noise::noiseTypeName(t), t == n.type) && t != n.type) {
+        const bool wasGenerator = noise::isGenerator(n.type);
         n.type = t;
         n.offset.reset();  // the new type's default
+        // The generators sample the unit sphere and refuse the fractals' keys; a fractal coming
+        // back from one gets its defaults.
+        if (noise::isGenerator(t)) {
+          layer.frequency = 1.0 / radiusM;  // functions of the direction (the parser's rule)
+          n.lacunarity = 2.0;
+          n.hash = noise::NoiseHash::Fast;
+          if (t == noise::NoiseType::Faults) {
+            n.octaves = 1;
+            n.gain.reset();
+          } else {
+            n.octaves = std::clamp(n.octaves, noise::kMinMpdLevels, noise::kMaxMpdLevels);
+          }
+        } else if (wasGenerator) {
+          layer.frequency = 1e-6;  // a 1,000 km wavelength to start from
+          n.octaves = 8;
+          n.H = 1.0;
+          n.gain.reset();
+        }
         done = true;
       }
     ImGui::EndCombo();
   }
+  if (noise::isGenerator(n.type)) {
+    done |= editGenerator(n, playing);
+    done |= editDouble("amplitude (m)", layer.amplitudeM, -10000.0, 10000.0, "%.0f");
+    return done;
+  }
+  playing = false;
   done |= editInt("octaves", n.octaves, noise::kMinOctaves, noise::kMaxOctaves);
   done |= editDouble("lacunarity", n.lacunarity, 1.01, 8.0);
   done |= editDouble("H", n.H, noise::kMinH, noise::kMaxH);
@@ -210,7 +280,10 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
       ImGui::PushID(int(i));
       if (ImGui::TreeNode("layer", "layer %zu: %s (%s)", i, p.layers[i].name.c_str(),
                           noise::noiseTypeName(p.layers[i].noise.type))) {
-        r.rebuild |= editLayer(p.layers[i]);
+        bool playing = faultsPlaying_ == int(i);
+        r.rebuild |= editLayer(p.layers[i], p.radiusM, playing);
+        if (playing) faultsPlaying_ = int(i);
+        else if (faultsPlaying_ == int(i)) faultsPlaying_ = -1;
         ImGui::TreePop();
       }
       ImGui::PopID();

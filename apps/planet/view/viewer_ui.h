@@ -96,6 +96,7 @@ class ViewerUi {
   bool showHelp_ = false;
   bool showPanel_ = true;
   char presetPath_[256] = "my_planet.toml";
+  int faultsPlaying_ = -1;  // the faults layer whose count runs up (seed 000's "Run"), or -1
   float goTo_[3] = {27.99f, 86.93f, 10000.0f};
 };
 
