@@ -29,6 +29,7 @@ struct ViewCommand {
   std::string screenshot;
   std::string path;
   bool hideUi = false;
+  std::string sky{skyModeName(SkySettings{}.mode)};
 };
 
 constexpr uint32_t kMaxFrames = 100'000'000;
@@ -48,6 +49,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   if (sub.count("--path") && cmd.path.empty()) throw UsageError("--path must name a file");
   options.screenshot = cmd.screenshot;
   options.hideUi = cmd.hideUi;
+  options.skyMode = checkSkyMode(cmd.sky);
   options.device = global.device;
   options.validation = global.validation;
   if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
@@ -105,8 +107,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                   "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]; "
                   "with --scene BODY:LAT,LON,ALT_M[,HEADING,PITCH] [default: the first body]");
   sub->add_option("--time", cmd->timeS, "With --scene: the scene time to start at, seconds")->capture_default_str();
-  sub->add_option("--time-scale", cmd->timeScale, "With --scene: scene seconds per real second")
-      ->capture_default_str();
+  sub->add_option("--time-scale", cmd->timeScale, "With --scene: scene seconds per real second")->capture_default_str();
   sub->add_option("--travel", cmd->travel, "With --scene: start travelling to this body at once (as T does)");
   sub->add_option("--sun", cmd->sun,
                   "AZIMUTH,ELEVATION in degrees, seen from the start's ground point [default: 135,35]");
@@ -122,6 +123,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   sub->add_option("--path", cmd->path,
                   "Play a camera path file (format: planet bench --print-path); with --frames, spread over them");
   sub->add_flag("--hide-ui", cmd->hideUi, "Start with the panel hidden (F2 shows it)");
+  addSkyModeOption(*sub, cmd->sky);
   sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runView(global, *cmd, *sub); });

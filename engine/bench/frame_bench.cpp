@@ -98,6 +98,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.terrain.heightSource = modes[m].heightSource;
     settings.terrain.limitOctaves = modes[m].limitOctaves;
     settings.terrain.patches = options.patches;
+    settings.sky.mode = options.skyMode;
     renderers.push_back(std::make_unique<Renderer>(context, planet, settings));
     runs[m].mode = modes[m];
   }
@@ -178,6 +179,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["height"] = options.height;
   j["fov_deg"] = options.fovYDeg;
   j["patches"] = options.patches;
+  j["sky"] = skyModeName(options.skyMode);
   j["frames"] = options.frames;
   j["warmup"] = options.warmup;
   j["flight_fps"] = options.flightFps;
@@ -259,9 +261,10 @@ std::string FrameBenchReport::csv() const {
 std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
-  out += fmt::format("preset: {} (hash {:016x}), {}x{}{}, path: {} ({} keys, {} s), {} frames after {} warm-up\n",
+  out += fmt::format("preset: {} (hash {:016x}), {}x{}{}{}, path: {} ({} keys, {} s), {} frames after {} warm-up\n",
                      preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
-                     pathSource, pathKeys, pathDurationS, options.frames, options.warmup);
+                     options.skyMode == SkyMode::Reference ? ", reference sky" : "", pathSource, pathKeys,
+                     pathDurationS, options.frames, options.warmup);
   out += options.flightFps > 0.0
              ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n\n",
                            options.flightFps, options.flightFps)

@@ -19,6 +19,7 @@
 #include "planet/planet_description.h"
 #include "camera/camera.h"
 #include "camera/camera_path.h"
+#include "render/sky_pass.h"
 #include "render/terrain_pass.h"
 #include "vk/timer.h"
 
@@ -38,8 +39,9 @@ struct FrameBenchOptions {
   uint32_t warmup = 5;    // untimed frames first, at the middles of as many equal parts of the path
   double fovYDeg = 60.0;
   SunPose sun;
-  bool compare = false;  // also run every other BenchMode
-  bool patches = true;   // patch textures (off: vertex normals only, like planet render --no-patches)
+  bool compare = false;               // also run every other BenchMode
+  bool patches = true;                // patch textures (off: vertex normals only, like planet render --no-patches)
+  SkyMode skyMode = SkyMode::Tables;  // planet bench --sky
   // The rate of the flight the timed frames sample. Each timed frame follows an untimed lead-in
   // frame 1 / flightFps s of flight earlier, so that it does the work a frame of a real-time
   // flight at that rate does: what depends on the previous frame (the patch levels that moved,

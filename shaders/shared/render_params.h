@@ -104,7 +104,7 @@ struct FrameUniforms {
   vec4 groundOctaves[kGroundOctavesGpu];  // xyz: anchor · frequency minus the shift (cells), w: frequency (1/m)
   vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
 };
-GPU_ASSERT_SIZE(FrameUniforms, 1808)
+GPU_ASSERT_SIZE(FrameUniforms, 1824)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

@@ -83,6 +83,7 @@ Viewer::Viewer(const ViewOptions& viewOptions) : options_(viewOptions) {
   const ViewOptions& options = options_;
   settings_.planet = options.planet;
   settings_.fovDeg = options.fovDeg;
+  settings_.skyMode = options.skyMode;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));
   settings_.mesh = qualityPreset(settings_.quality).mesh;

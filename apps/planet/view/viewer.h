@@ -11,6 +11,7 @@
 #include "planet/scene_description.h"
 #include "camera/camera.h"
 #include "camera/camera_path.h"
+#include "render/sky_pass.h"
 #include "render/view_quality.h"
 
 namespace planet::view {
@@ -27,6 +28,7 @@ struct ViewOptions {
   std::string screenshot;              // save the last frame here (PNG, without the panel)
   std::optional<CameraPath> path;      // play this camera path (with `frames`: spread over them)
   bool hideUi = false;                 // start with the panel hidden (F2 shows it)
+  SkyMode skyMode = SkyMode::Tables;   // planet view --sky
   // A scene of several bodies instead of `planet` (planet view --scene): the camera starts on
   // body `sceneBody` at `camera`, the scene's clock at sceneTimeS, running timeScale times real
   // time; T travels to the next body. travelTo starts the autopilot at once (tests, demos).

@@ -22,6 +22,7 @@ RenderSettings ViewerRenderer::renderSettings(const ViewerSettings& settings, Vk
   base.terrain.water = settings.water;
   base.sky.clouds = settings.clouds;
   base.sky.exposure = settings.exposure;
+  base.sky.mode = settings.skyMode;
   RenderSettings render = viewRenderSettings(base, settings.quality, window.width, window.height);
   render.terrain.mesh = settings.mesh;
   return render;
@@ -73,6 +74,7 @@ void ViewerRenderer::apply(const UiRequests& r, ViewerSettings& settings, VkExte
       SkySettings sky = renderer_->settings().sky;
       sky.clouds = settings.clouds;
       sky.exposure = settings.exposure;
+      sky.mode = settings.skyMode;
       renderer_->setSkySettings(sky);
     }
     if (r.terrainToggles) applyTerrainToggles(settings);
