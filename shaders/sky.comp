@@ -1,9 +1,13 @@
 #version 450
-// The sky compose pass (issue 4, points 2–4; DESIGN.md "One frame", step 3): runs after the
-// stars, terrain and water were drawn into the HDR target and, per pixel, along the view ray:
-// - single scattering of the atmosphere in front of whatever the pixel shows (the sky itself
-//   where nothing was drawn, aerial perspective on terrain and water), with the sun's
-//   transmittance from the table (shaders/common/atmosphere.glsl);
+// The sky compose pass (issue 4, points 2–4; issue 21, points 1 and 2; DESIGN.md "One frame",
+// step 3): runs after the stars, terrain and water were drawn into the HDR target and, per
+// pixel, along the view ray:
+// - the atmosphere in front of whatever the pixel shows, single and multiple scattering: the
+//   sky itself where nothing was drawn, from the sky-view table; aerial perspective on terrain,
+//   water and clouds from the aerial-perspective volume (both built this frame by sky_view.comp
+//   and aerial_perspective.comp, Hillaire 2020 §5.3–5.4). Compiled with SKY_REFERENCE (the
+//   `--sky reference` mode), it marches every pixel's ray instead, with the multiple-scattering
+//   table, as the reference the tables are tested against;
 // - the cloud layer where the ray crosses it (seed 001 §4.4: three cover images cross-faded,
 //   Elias's cover function), lit by the sun through the air, seen from above or below;
 // - the clouds' shadow on the ground (toward the sun from the drawn surface);
@@ -23,8 +27,15 @@ layout(set = 0, binding = kSkyBindingColor, rgba16f) uniform image2D color;
 layout(set = 0, binding = kSkyBindingDepth) uniform sampler2D depthBuffer;
 layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = kSkyBindingClouds) uniform samplerCube cloudCover;
+layout(set = 0, binding = kSkyBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
+layout(set = 0, binding = kSkyBindingSkyView) uniform sampler2D skyView;
+layout(set = 0, binding = kSkyBindingAerialLight) uniform sampler2DArray aerialLight;
+layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler2DArray aerialTransmittance;
 
+#define MULTIPLE_SCATTERING(a, h, muS) \
+  textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
 #include "atmosphere_lookup.glsl"
+#include "sky_aerial.glsl"
 
 #define PERM(i) 0u  // the fast hash only
 #define OCTAVE_REMAINDER(layer, i) vec4(0.0f)
@@ -184,6 +195,46 @@ void marchLayer(vec3 dir, float R, float h, float mu, vec2 stretch, float nu, fl
   }
 }
 
+// The tables' atmosphere between the camera and distance t along the pixel's ray (screen
+// position uv): light scattered toward the camera and transmittance, from the two slices of the
+// aerial-perspective volume around t (in front of the first, toward nothing at the camera).
+void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
+  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f);
+  float k0 = floor(slice);
+  float f = slice - k0;
+  vec3 light1 = textureLod(aerialLight, vec3(uv, max(k0 + 1.0f, 0.0f)), 0.0f).rgb;
+  vec3 transmittance1 = textureLod(aerialTransmittance, vec3(uv, max(k0 + 1.0f, 0.0f)), 0.0f).rgb;
+  if (k0 < 0.0f) {
+    light = light1 * f;
+    transmittance = mix(vec3(1.0f), transmittance1, f);
+    return;
+  }
+  if (f == 0.0f || k0 + 1.0f > float(kAerialSize) - 1.0f) {
+    light = textureLod(aerialLight, vec3(uv, k0), 0.0f).rgb;
+    transmittance = textureLod(aerialTransmittance, vec3(uv, k0), 0.0f).rgb;
+    return;
+  }
+  light = mix(textureLod(aerialLight, vec3(uv, k0), 0.0f).rgb, light1, f);
+  transmittance = mix(textureLod(aerialTransmittance, vec3(uv, k0), 0.0f).rgb, transmittance1, f);
+}
+
+// The sky along the whole ray from the sky-view table (black where the ray misses the air).
+vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
+  vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
+  float theta = acos(clamp(dir.z, -1.0f, 1.0f));
+  if (theta < range.x) return vec3(0.0f);
+  float v = unitToTexel(skyViewV(theta, range), float(kSkyViewHeight));
+  // Each half of the rows (above and below the ground's horizon) is read only from its own
+  // texels: the two sides of the horizon are the sky and the ground.
+  float middle = 0.5f * float(kSkyViewHeight);
+  v = theta <= range.y ? min(v, (middle - 0.5f) / float(kSkyViewHeight)) : max(v, (middle + 0.5f) / float(kSkyViewHeight));
+  vec2 viewFlat = vec2(dir.x, dir.y), sunFlat = vec2(sun.x, sun.y);
+  float lengths = length(viewFlat) * length(sunFlat);
+  float cosPhi = lengths > 1e-7f ? clamp(dot(viewFlat, sunFlat) / lengths, -1.0f, 1.0f) : 1.0f;
+  float u = unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth));
+  return textureLod(skyView, vec2(u, v), 0.0f).rgb;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(sky.extent.x) || pixel.y >= int(sky.extent.y)) return;
@@ -218,12 +269,10 @@ void main() {
   // A ray that met no geometry has met the ground only below the lowest surface: without a sea,
   // basins below the radius sphere are seen past its horizon (the mesh may end before them), and
   // counting the radius sphere as ground drew those rays black.
-  vec2 ground = raySphere(R, h, mu, hasSea ? 0.0f : min(lowest, 0.0f));
+  float hGround = sky.surface.z;  // the radius sphere with a sea, else min(lowest, 0)
+  vec2 ground = raySphere(R, h, mu, hGround);
   bool seesGround = mu < 0.0f && ground.x >= 0.0f;
   float tEnd = geometry ? tGeometry : (seesGround ? ground.x : kInfinity);
-
-  vec3 inscatter = vec3(0.0f);
-  vec3 transmittance = vec3(1.0f);
 
   // Cloud shadow on the drawn surface: the column where the ray toward the sun crosses the
   // middle of the layer, crossed at the sun's slant (the cloud's width caps it), blocks the
@@ -268,16 +317,15 @@ void main() {
     }
   }
 
+  vec3 inscatter = vec3(0.0f);
+  vec3 transmittance = vec3(1.0f);
+#ifdef SKY_REFERENCE
   if (a.radii.w > 0.5f) {
-    float top = a.radii.y;
-    // Outside (or exactly on) the top sphere the ray enters and leaves it; inside, it leaves.
-    vec2 topHits = raySphere(R, h, mu, top);
-    bool outside = h >= top;
-    float tStart = outside ? topHits.x : 0.0f;
-    float tExit = outside ? topHits.y : topHits.x;
+    vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+    float tStart = stretch.x;
     // (A scene's nearer body may hide the whole shell: then the ray never enters it.)
-    if (tStart >= 0.0f && tExit > tStart && min(tEnd, tExit) > tStart) {
-      float tStop = min(tEnd, tExit);
+    if (stretch.y > tStart && min(tEnd, stretch.y) > tStart) {
+      float tStop = min(tEnd, stretch.y);
       // Segment boundaries: the start, the layer crossings in between, the end.
       float cuts[3];
       uint cutCount = 0u;
@@ -298,13 +346,43 @@ void main() {
           transmittance *= cloudTransmittance;
         }
         uint steps = max(2u, uint(ceil(float(samples) * (t1 - t0) / total)));
-        vec3 segmentLight, segmentTransmittance;
-        singleScattering(a, h0, mu0, muS0, nu, t1 - t0, steps, segmentLight, segmentTransmittance);
+        vec3 segmentSingle, segmentLight, segmentTransmittance;
+        scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, false, segmentSingle, segmentLight, segmentTransmittance);
         inscatter += transmittance * segmentLight;
         transmittance *= segmentTransmittance;
       }
     }
   }
+#else
+  if (a.radii.w > 0.5f) {
+    vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
+    vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
+    if (geometry) {
+      aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);
+    } else {
+      inscatter = skyViewRadiance(dir, sun, h, hGround);
+      // Toward the sun's disc and the stars: the transmittance table from where the ray enters
+      // the air (the ground case is set below).
+      vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+      if (!seesGround && stretch.y > stretch.x) {
+        float h0 = altitudeAlong(R, h, mu, stretch.x);
+        float mu0 = clamp((r * mu + stretch.x) / (R + h0), -1.0f, 1.0f);
+        transmittance = textureLod(transmittanceTable, transmittanceUv(a, h0, mu0), 0.0f).rgb;
+      }
+    }
+    if (tCloud >= 0.0f) {
+      // The layer at tCloud splits the ray: the air in front of it, the cloud, and the rest of
+      // the ray's light (all of it less the part in front) seen through the cloud.
+      vec3 frontLight, frontTransmittance;
+      aerialPerspective(uv, tCloud, columnStretch, frontLight, frontTransmittance);
+      inscatter = frontLight + frontTransmittance * cloudLightSum +
+                  cloudTransmittance * max(inscatter - frontLight, vec3(0.0f));
+      transmittance *= cloudTransmittance;
+    }
+  }
+#endif
+  // A ray that met no geometry but the ground sphere shows neither stars nor the sun through it.
+  if (seesGround && !geometry) transmittance = vec3(0.0f);
 
   vec3 result;
   if (geometry) {

@@ -1,10 +1,10 @@
 #version 450
 // Single rays through the atmosphere for `planet sky` and the tests (engine/render/sky_tables.h,
-// SkyTables::evaluateRays): per ray, (1) the per-pixel march of the sky pass as sky.comp does it
-// for a ray that meets no geometry and no cloud: singleScattering over the ray's stretch inside
-// the atmosphere in `counts.y` samples, the sun's transmittance from the table; (2) the same
-// stretch through the tables as the sky-view table will march it: single scattering and
-// σ_s · Ψ_ms from the multiple-scattering table in `counts.z` samples.
+// SkyTables::evaluateRays): per ray, (1) the per-pixel march of the reference sky as sky.comp
+// (SKY_REFERENCE) does it for a ray that meets no geometry and no cloud: scatteringAlong over the
+// ray's stretch inside the atmosphere in `counts.y` equal steps; (2) the same stretch by the
+// midpoint rule of the CPU reference: single scattering and σ_s · Ψ_ms from the
+// multiple-scattering table in `counts.z` samples.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/sky_params.h"
@@ -15,9 +15,9 @@ layout(set = 0, binding = 0) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = 1) uniform sampler2D multipleScatteringTable;
 // In: per ray (altitude above R in m, view zenith cosine, sun zenith cosine, view-sun cosine).
 layout(std430, set = 0, binding = 2) readonly buffer Rays { vec4 rays[]; };
-// Out: per ray five vec4s (rgb; a unused): the reference march's radiance, the tables' single
-// scattering, their multiple scattering, and the transmittance along the stretch by the tables'
-// march and by the reference's.
+// Out: per ray six vec4s (rgb; a unused): the reference march's single scattering, the tables'
+// single scattering, their multiple scattering, the transmittance along the stretch by the
+// tables' march and by the reference's, and the reference march's total (single and multiple).
 layout(std430, set = 0, binding = 3) writeonly buffer Results { vec4 results[]; };
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
@@ -32,7 +32,7 @@ void main() {
   float R = a.radii.x;
   float h = ray.x, mu = ray.y, muS = ray.z, nu = ray.w;
   float r = R + h;
-  vec3 reference = vec3(0.0f), single = vec3(0.0f), multiple = vec3(0.0f);
+  vec3 reference = vec3(0.0f), referenceTotal = vec3(0.0f), single = vec3(0.0f), multiple = vec3(0.0f);
   vec3 transmittance = vec3(1.0f), referenceTransmittance = vec3(1.0f);
   // The stretch inside the atmosphere, as sky.comp finds it: from the camera (or where the ray
   // enters the top) to where it leaves the top or meets the ground.
@@ -47,13 +47,15 @@ void main() {
     float r0 = R + h0;
     float mu0 = clamp((r * mu + tStart) / r0, -1.0f, 1.0f);
     float muS0 = clamp((r * muS + tStart * nu) / r0, -1.0f, 1.0f);
-    singleScattering(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.y), reference, referenceTransmittance);
+    scatteringAlong(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.y), false, reference, referenceTotal,
+                    referenceTransmittance);
     singleScattering(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.z), single, transmittance);
     multiple = multipleScattering(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.z));
   }
-  results[5u * index + 0u] = vec4(reference, 0.0f);
-  results[5u * index + 1u] = vec4(single, 0.0f);
-  results[5u * index + 2u] = vec4(multiple, 0.0f);
-  results[5u * index + 3u] = vec4(transmittance, 0.0f);
-  results[5u * index + 4u] = vec4(referenceTransmittance, 0.0f);
+  results[6u * index + 0u] = vec4(reference, 0.0f);
+  results[6u * index + 1u] = vec4(single, 0.0f);
+  results[6u * index + 2u] = vec4(multiple, 0.0f);
+  results[6u * index + 3u] = vec4(transmittance, 0.0f);
+  results[6u * index + 4u] = vec4(referenceTransmittance, 0.0f);
+  results[6u * index + 5u] = vec4(referenceTotal, 0.0f);
 }

@@ -212,5 +212,45 @@ TEST(AtmosphereModel, MultipleScatteringLightsTheTwilightZenithBlue) {
   EXPECT_LT(skyLuminance(noon.total), 2.0 * skyLuminance(noon.radiance));
 }
 
+// The sky along a view of elevation `viewDeg` and azimuth `azimuthDeg` from the sun's, with the
+// sun at `sunDeg`, seen from altitude h: single and multiple scattering (256 steps).
+glm::dvec3 skyTotal(const gpu::AtmosphereParams& params, const MultipleScatteringTable& table, double h, double sunDeg,
+                    double viewDeg, double azimuthDeg) {
+  const double deg = 3.14159265358979 / 180.0;
+  const double mu = std::sin(viewDeg * deg), muS = std::sin(sunDeg * deg);
+  const double nu = mu * muS + std::cos(viewDeg * deg) * std::cos(sunDeg * deg) * std::cos(azimuthDeg * deg);
+  return skyRadiance(params, h, mu, muS, nu, 256, 256, &table).total;
+}
+
+// Twilight from the ground too (issue 21, point 3): with the sun 4° below the horizon the zenith
+// is blue (blue over red), and the sky 2° above the horizon under the sun (which dips 3.2°
+// below the level at 10 km) glows orange (red over blue, red over green).
+TEST(AtmosphereModel, TwilightFromTheGroundIsBlueOverheadAndOrangeUnderTheSun) {
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("earth"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  for (double h : {2.0, 10'000.0}) {
+    const glm::dvec3 zenith = skyTotal(params, table, h, -4.0, 90.0, 0.0);
+    const double dipDeg = std::acos(params.radii.x / (params.radii.x + h)) * 180.0 / 3.14159265358979;
+    const glm::dvec3 glow = skyTotal(params, table, h, -4.0, 2.0 - dipDeg, 0.0);
+    EXPECT_GT(zenith.b, 1.2 * zenith.r) << h;
+    EXPECT_GT(glow.r, 1.5 * glow.b) << h;
+    EXPECT_GT(glow.r, glow.g) << h;
+  }
+}
+
+// Mars (issue 21, point 3): by day, 45° up away from the sun, the sky is butterscotch (red over
+// green over blue); at sunset the sky around the sun is bluer (blue over red) than the sky
+// opposite it, as the dust scatters blue light more forward than red (the preset's mie_g).
+TEST(AtmosphereModel, MarsSkyIsButterscotchByDayAndBlueAroundTheSettingSun) {
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("mars"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  const glm::dvec3 day = skyTotal(params, table, 2.0, 60.0, 45.0, 180.0);
+  EXPECT_GT(day.r, 1.1 * day.g);
+  EXPECT_GT(day.g, 1.1 * day.b);
+  const glm::dvec3 nearSun = skyTotal(params, table, 2.0, 3.0, 5.0, 3.0);
+  const glm::dvec3 away = skyTotal(params, table, 2.0, 3.0, 5.0, 180.0);
+  EXPECT_GT(nearSun.b / nearSun.r, 1.5 * away.b / away.r) << nearSun.b / nearSun.r << " vs " << away.b / away.r;
+}
+
 }  // namespace
 }  // namespace planet

@@ -111,7 +111,8 @@ TEST(PlanetDescription, EarthHasContinentsMountainsAndMetreScaleDetail) {
   ASSERT_GE(continents.hypsometry.size(), 8u);
   double seaFraction = 0.0;
   for (size_t k = 1; k < continents.hypsometry.size(); ++k)
-    if (continents.hypsometry[k - 1].y < 0.0 && continents.hypsometry[k].y >= 0.0) seaFraction = continents.hypsometry[k].x;
+    if (continents.hypsometry[k - 1].y < 0.0 && continents.hypsometry[k].y >= 0.0)
+      seaFraction = continents.hypsometry[k].x;
   EXPECT_GT(seaFraction, 0.65);
   EXPECT_LT(seaFraction, 0.75);
   EXPECT_LT(continents.hypsometry.front().y, -4000.0);
@@ -218,7 +219,7 @@ TEST(PlanetDescription, SkyTablesAreOptionalAndChecked) {
   EXPECT_TRUE(sky.atmosphere.enabled);
   EXPECT_EQ(sky.atmosphere.rayleighScattering, glm::dvec3(1e-5));
   EXPECT_EQ(sky.atmosphere.mieScattering, glm::dvec3(1e-6, 2e-6, 3e-6));
-  EXPECT_EQ(sky.atmosphere.mieG, 0.5);
+  EXPECT_EQ(sky.atmosphere.mieG, glm::dvec3(0.5));
   EXPECT_TRUE(sky.clouds.enabled);
   EXPECT_EQ(sky.clouds.coverage, 0.7);
   EXPECT_EQ(sky.clouds.topM, 9000.0);
@@ -409,8 +410,10 @@ TEST(PlanetDescription, BinaryAndNonUtf8InputIsRejected) {
   EXPECT_EQ(parseError(edit("\"Test\"", "\"Test\" # Terre \xc3\xa9")).find("non-ASCII"), std::string::npos);
   EXPECT_EQ(parseError("s = \"\"\"\\\n\xc2\xa7\"\"\"\n").substr(0, 69),
             "x.toml:2: a non-ASCII character after a backslash in a string: not a ");
-  EXPECT_NE(parseError("name = \"a\\\xc3\xa9\"").find("x.toml:1: a non-ASCII character after a backslash"), std::string::npos);
-  EXPECT_NE(parseError("name = \"\"\"a\\ \xef\xba\xbf\"\"\"").find("x.toml:1: a non-ASCII character after a backslash"), std::string::npos);
+  EXPECT_NE(parseError("name = \"a\\\xc3\xa9\"").find("x.toml:1: a non-ASCII character after a backslash"),
+            std::string::npos);
+  EXPECT_NE(parseError("name = \"\"\"a\\ \xef\xba\xbf\"\"\"").find("x.toml:1: a non-ASCII character after a backslash"),
+            std::string::npos);
   std::mt19937 random(7);
   std::string garbage(4096, '\0');
   for (char& c : garbage) c = char(random());

@@ -138,7 +138,7 @@ TEST(PresetWriter, EditedMoonWithAirCloudsAndAnOceanRoundTrips) {
   d.atmosphere.rayleighScattering = {1e-6, 2e-6, 3.3e-6};
   d.atmosphere.mieScattering = glm::dvec3(7e-6);  // written as one number
   d.atmosphere.mieAbsorption = {0.0, 1e-7, std::numeric_limits<double>::denorm_min()};
-  d.atmosphere.mieG = -0.99;
+  d.atmosphere.mieG = glm::dvec3(-0.99);
   d.atmosphere.ozoneAbsorption = {0.0, 0.0, 0.0};
   d.atmosphere.ozoneWidthM = 0.0;
   d.clouds.enabled = true;
@@ -286,7 +286,7 @@ class RandomPlanet {
     a.mieExtinctionRatio = value(kMieExtinctionRatioRange);
     a.mieAbsorption = coefficients();
     a.mieScaleHeightM = value(kScaleHeightRangeM);
-    a.mieG = value(kMieGRange);
+    a.mieG = glm::dvec3(value(kMieGRange), value(kMieGRange), value(kMieGRange));
     a.ozoneAbsorption = coefficients();
     a.ozoneCenterM = value(kOzoneAltitudeRangeM);
     a.ozoneWidthM = value(kOzoneAltitudeRangeM);

@@ -64,9 +64,8 @@ TEST_F(SkyTablesGpu, MultipleScatteringTableMatchesCpuReference) {
 // Rays through the tables against the CPU reference (256 double steps, the sun's transmittance
 // integrated, Ψ_ms from the CPU table): by day from the ground, at twilight from 10 km, and from
 // orbit across the limb. The tables' march (64 steps): single and total within 5 %, the
-// transmittance within 1 %. The sky pass's march (16 steps) against the CPU reference with the
-// same 16 steps within 2 %: against 256 steps it is up to 35 % low on Earth, whose 1.2 km haze
-// its samples step over (the LUT sky of issue 21 is to fix that).
+// transmittance within 1 %. The reference sky pass's march (`--sky reference`, 64 equal steps,
+// each integrated in closed form) against the same: single and total within 5 %.
 TEST_F(SkyTablesGpu, RaysThroughTheTablesMatchTheCpuReference) {
   const double deg = 3.14159265358979 / 180.0;
   struct Case {
@@ -83,36 +82,37 @@ TEST_F(SkyTablesGpu, RaysThroughTheTablesMatchTheCpuReference) {
       const double nu = mu * muS + std::cos(c.viewDeg * deg) * std::cos(c.sunDeg * deg) * std::cos(c.azimuthDeg * deg);
       queries.push_back({c.altitudeM, mu, muS, nu});
     }
-    const std::vector<SkyTables::RayResult> rays = tables.evaluateRays(queries, 16, 64);
+    const std::vector<SkyTables::RayResult> rays = tables.evaluateRays(queries, 64, 64);
     const MultipleScatteringTable table = multipleScatteringTable(tables.atmosphere());
     double worst[4] = {0.0, 0.0, 0.0, 0.0};
-    double coarse = 0.0;  // the sky pass's march against 256 steps
+    double worstReferenceTotal = 0.0;
     for (size_t i = 0; i < queries.size(); ++i) {
       const SkyTables::RayQuery& q = queries[i];
       const SkySample cpu = skyRadiance(tables.atmosphere(), q.altitudeM, q.mu, q.muS, q.nu, 256, 256, &table);
-      const SkySample cpu16 = skyRadiance(tables.atmosphere(), q.altitudeM, q.mu, q.muS, q.nu, 16, 256);
       const double floor = std::max(1e-3 * std::max({cpu.total.r, cpu.total.g, cpu.total.b}), 1e-12);
       for (int c = 0; c < 3; ++c) {
         const std::string where = std::string(preset) + " case " + std::to_string(i) + " channel " + std::to_string(c);
         const double single = relative(rays[i].single[c], cpu.radiance[c], floor);
         const double total = relative(rays[i].single[c] + rays[i].multiple[c], cpu.total[c], floor);
         const double transmittance = relative(rays[i].transmittance[c], cpu.transmittance[c], 1e-3);
-        const double reference = relative(rays[i].reference[c], cpu16.radiance[c], floor);
-        coarse = std::max(coarse, relative(rays[i].reference[c], cpu.radiance[c], floor));
+        const double reference = relative(rays[i].reference[c], cpu.radiance[c], floor);
+        const double referenceTotal = relative(rays[i].referenceTotal[c], cpu.total[c], floor);
+        worstReferenceTotal = std::max(worstReferenceTotal, referenceTotal);
         EXPECT_LT(single, 0.05) << where;
         EXPECT_LT(total, 0.05) << where;
         EXPECT_LT(transmittance, 0.01) << where;
         worst[0] = std::max(worst[0], single);
         worst[1] = std::max(worst[1], total);
         worst[2] = std::max(worst[2], transmittance);
-        EXPECT_LT(reference, 0.02) << where;
+        EXPECT_LT(reference, 0.05) << where;
+        EXPECT_LT(referenceTotal, 0.05) << where;
         worst[3] = std::max(worst[3], reference);
       }
     }
     std::printf(
         "%s: rays, GPU tables vs CPU reference (relative): single %.2e, total %.2e, transmittance %.2e; "
-        "the sky pass's march vs CPU with its 16 steps %.2e (vs 256 steps %.2e)\n",
-        preset, worst[0], worst[1], worst[2], worst[3], coarse);
+        "the reference sky pass's march: single %.2e, total %.2e\n",
+        preset, worst[0], worst[1], worst[2], worst[3], worstReferenceTotal);
   }
 }
 

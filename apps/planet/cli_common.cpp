@@ -208,8 +208,24 @@ SceneCamera parseSceneCamera(const SceneDescription& scene, const std::string& t
 }
 
 void checkSceneExcludes(const CLI::App& command) {
-  if (command.count("--preset")) throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
-  if (command.count("--sun")) throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+  if (command.count("--preset"))
+    throw UsageError("--preset and --scene exclude each other (a scene names its presets)");
+  if (command.count("--sun"))
+    throw UsageError("--sun does not apply to --scene: the scene's sun lights it from its origin");
+}
+
+CLI::Option* addSkyModeOption(CLI::App& sub, std::string& mode) {
+  return sub
+      .add_option("--sky", mode,
+                  "tables: the atmosphere from this frame's sky-view table and aerial-perspective volume; reference: "
+                  "every pixel's ray marched through the air (slow; what the tables are tested against)")
+      ->capture_default_str();
+}
+
+SkyMode checkSkyMode(const std::string& mode) {
+  if (mode != "tables" && mode != "reference")
+    throw UsageError(fmt::format("--sky must be tables or reference, got '{}'", mode));
+  return parseSkyMode(mode);
 }
 
 }  // namespace planet::cli

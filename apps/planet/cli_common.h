@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "planet/scene_description.h"
+#include "render/sky_pass.h"
 #include "camera/camera.h"
 #include "vk/context.h"
 
@@ -135,5 +136,10 @@ void addExportCommand(CLI::App& app, int& exitCode);
 void addStatsCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
+
+// --sky tables|reference (render, bench, view): how the sky pass gets the atmosphere. Adds the
+// option writing `mode`; checkSkyMode turns the text into the mode, or a UsageError naming it.
+CLI::Option* addSkyModeOption(CLI::App& sub, std::string& mode);
+SkyMode checkSkyMode(const std::string& mode);
 
 }  // namespace planet::cli

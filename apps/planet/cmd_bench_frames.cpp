@@ -33,6 +33,7 @@ struct FrameBenchCommand {
   bool compare = false;
   bool noPatches = false;
   bool printPath = false;
+  std::string sky{skyModeName(SkySettings{}.mode)};
   std::vector<CLI::Option*> options;      // every option above: given any, `planet bench` runs the benchmark
   std::vector<CLI::Option*> fileOptions;  // --path, --json, --csv, --plot
 };
@@ -82,6 +83,7 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   const ExposureChoice exposure = parseExposure(cmd.exposure);
   o.autoExposure = exposure.automatic;
   if (!exposure.automatic) o.exposure = exposure.fixed;
+  o.skyMode = checkSkyMode(cmd.sky);
   for (const CLI::Option* option : cmd.fileOptions)
     if (option->count() && option->as<std::string>().empty())
       throw UsageError(option->get_name() + " must name a file");
@@ -139,9 +141,10 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
   add(bench.add_option("--warmup", cmd->warmup, "Untimed frames before them, spread over the path the same way")
           ->capture_default_str());
   add(bench.add_option("--fov", cmd->fovDeg, "Vertical field of view in degrees")->capture_default_str());
-  add(bench.add_option("--flight-fps", cmd->flightFps,
-                       "Time each frame after an untimed one 1/RATE s of flight earlier, as in a real-time flight at "
-                       "RATE frames per second (0: the timed frames only, each 1/(frames-1) of the path apart)")
+  add(bench
+          .add_option("--flight-fps", cmd->flightFps,
+                      "Time each frame after an untimed one 1/RATE s of flight earlier, as in a real-time flight at "
+                      "RATE frames per second (0: the timed frames only, each 1/(frames-1) of the path apart)")
           ->capture_default_str());
   add(bench.add_option("--sun", cmd->sun,
                        "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));
@@ -161,6 +164,7 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
                      "Also fly the path with vertex-shader heights, CPU heights and octave limiting off; report each "
                      "as a ratio of median terrain time to the default's"));
   add(bench.add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)"));
+  add(addSkyModeOption(bench, cmd->sky));
   add(bench.add_flag("--print-path", cmd->printPath, "Print the camera path in the --path format and exit"));
   auto givenOption = [cmd] {
     for (const CLI::Option* option : cmd->options)

@@ -86,11 +86,11 @@ int runSceneRender(const GlobalOptions& global, const RenderCommand& cmd, const 
   writePng(cmd.out, result.image);
   fmt::print("wrote {} ({}x{}, scene '{}' at t = {} s on {})\n", cmd.out, settings.width, settings.height, scene.name,
              cmd.timeS, context->info.name);
-  fmt::print("camera: on {} at lat {:.4f} lon {:.4f} altitude {:.2f} m ({:.2f} m above the ground), heading {:.2f} "
-             "pitch {:.2f}\n",
-             scene.bodies[primary].name, result.camera.latitudeDeg, result.camera.longitudeDeg,
-             result.camera.altitudeM, result.terrain.heightAboveGroundM, result.camera.headingDeg,
-             result.camera.pitchDeg);
+  fmt::print(
+      "camera: on {} at lat {:.4f} lon {:.4f} altitude {:.2f} m ({:.2f} m above the ground), heading {:.2f} "
+      "pitch {:.2f}\n",
+      scene.bodies[primary].name, result.camera.latitudeDeg, result.camera.longitudeDeg, result.camera.altitudeM,
+      result.terrain.heightAboveGroundM, result.camera.headingDeg, result.camera.pitchDeg);
   std::string distances;
   for (size_t i = 0; i < scene.bodies.size(); ++i)
     distances += fmt::format("{}{} {:.4g} m", i ? ", " : "", scene.bodies[i].name,
@@ -127,6 +127,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.autoExposure = exposure.automatic;
   if (!exposure.automatic) settings.sky.exposure = exposure.fixed;
   settings.sky.clouds = !cmd.noClouds;
+  settings.sky.mode = checkSkyMode(cmd.sky);
   settings.terrain.water = !cmd.noWater;
   if (sub.count("--path")) return runVideoRender(global, cmd, sub, settings);
   for (const char* option : {"--frames", "--fps", "--path-body"})
@@ -217,6 +218,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
       ->capture_default_str();
   sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
+  addSkyModeOption(*sub, cmd->sky);
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runRender(global, *cmd, *sub); });
 }

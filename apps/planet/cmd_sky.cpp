@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/file.h"
 #include "reference/atmosphere_model.h"
+#include "render/sky_pass.h"
 #include "render/sky_tables.h"
 
 namespace planet::cli {
@@ -25,10 +26,10 @@ namespace {
 // values, 5.8, 13.5, 33.1 ·10⁻⁶ m⁻¹) are those of 680, 550 and 440 nm (β_R ∝ λ⁻⁴).
 constexpr int kWavelengthsNm[3] = {680, 550, 440};
 
-// Samples along the ray: the CPU reference's (and its sun transmittance's), the sky pass's
-// default per-pixel march (SkySettings::viewSamples), and the tables' march.
+// Samples along the ray: the CPU reference's (and its sun transmittance's), the reference sky
+// pass's default per-pixel march (SkySettings::viewSamples), and the tables' march.
 constexpr uint32_t kCpuSteps = 256;
-constexpr uint32_t kReferenceSteps = 16;
+const uint32_t kReferenceSteps = SkySettings{}.viewSamples;
 constexpr uint32_t kTableSteps = 64;
 constexpr double kMaxAltitudeM = 1e9;
 
@@ -73,7 +74,7 @@ nlohmann::ordered_json modelJson(const PlanetDescription& planet, const gpu::Atm
           {"mie_scattering_per_m", triple(a.mieScattering)},
           {"mie_extinction_per_m", triple(glm::dvec3(glm::vec3(p.mieExtinction)))},
           {"mie_scale_height_m", a.mieScaleHeightM},
-          {"mie_g", a.mieG},
+          {"mie_g", triple(a.mieG)},
           {"mie_phase", "Cornette-Shanks"},
           {"ozone_absorption_per_m", triple(a.ozoneAbsorption)},
           {"ozone_center_m", a.ozoneCenterM},
@@ -139,10 +140,10 @@ int runSky(const GlobalOptions& global, const SkyCommand& cmd, const CLI::App& s
     } else {
       result.transmittance = ray.referenceTransmittance;
       result.single = ray.reference;
-      result.total = ray.reference;
+      result.total = ray.referenceTotal;
       result.method = fmt::format(
-          "reference: the sky pass's per-pixel march, {} samples, single scattering only (total = single), run for "
-          "this ray by sky_ray.comp on {}",
+          "reference: the sky pass's per-pixel march (--sky reference), {} samples, multiple scattering from the "
+          "GPU's table, run for this ray by sky_ray.comp on {}",
           kReferenceSteps, context->info.name);
     }
   }
@@ -215,7 +216,7 @@ void addSkyCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   sub->add_option("--backend", cmd->backend,
                   "cpu: the double reference with its multiple-scattering table (no GPU); gpu: the GPU's "
                   "transmittance and multiple-scattering tables; reference: the sky pass's per-pixel march "
-                  "(16 samples, single scattering only) run on the GPU for this ray")
+                  "(planet render --sky reference, 64 samples) run on the GPU for this ray")
       ->capture_default_str();
   sub->add_option("--json", cmd->json, "Also write the results and the model's parameters as JSON to FILE");
   checkNumbersAsText(*sub);

@@ -30,6 +30,7 @@ struct ViewCommand {
   std::string path;
   bool hideUi = false;
   std::string exposure = "auto";
+  std::string sky{skyModeName(SkySettings{}.mode)};
 };
 
 constexpr uint32_t kMaxFrames = 100'000'000;
@@ -52,6 +53,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   const ExposureChoice exposure = parseExposure(cmd.exposure);
   options.autoExposure = exposure.automatic;
   if (!exposure.automatic) options.exposure = exposure.fixed;
+  options.skyMode = checkSkyMode(cmd.sky);
   options.device = global.device;
   options.validation = global.validation;
   if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
@@ -109,8 +111,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                   "LAT,LON,ALT_M[,HEADING,PITCH]: where to start (as planet render) [default: 20,-30,2e7,0,-90]; "
                   "with --scene BODY:LAT,LON,ALT_M[,HEADING,PITCH] [default: the first body]");
   sub->add_option("--time", cmd->timeS, "With --scene: the scene time to start at, seconds")->capture_default_str();
-  sub->add_option("--time-scale", cmd->timeScale, "With --scene: scene seconds per real second")
-      ->capture_default_str();
+  sub->add_option("--time-scale", cmd->timeScale, "With --scene: scene seconds per real second")->capture_default_str();
   sub->add_option("--travel", cmd->travel, "With --scene: start travelling to this body at once (as T does)");
   sub->add_option("--sun", cmd->sun,
                   "AZIMUTH,ELEVATION in degrees, seen from the start's ground point [default: 135,35]");
@@ -129,6 +130,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   sub->add_option("--exposure", cmd->exposure,
                   "HDR exposure before the tonemap: auto (adapts to the view as the eye does) or a fixed number")
       ->capture_default_str();
+  addSkyModeOption(*sub, cmd->sky);
   sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runView(global, *cmd, *sub); });

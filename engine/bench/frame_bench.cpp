@@ -100,6 +100,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.terrain.patches = options.patches;
     settings.autoExposure = options.autoExposure;
     settings.sky.exposure = options.exposure;
+    settings.sky.mode = options.skyMode;
     renderers.push_back(std::make_unique<Renderer>(context, planet, settings));
     runs[m].mode = modes[m];
   }
@@ -184,6 +185,7 @@ nlohmann::json FrameBenchReport::toJson() const {
     j["exposure"] = "auto";
   else
     j["exposure"] = options.exposure;
+  j["sky"] = skyModeName(options.skyMode);
   j["frames"] = options.frames;
   j["warmup"] = options.warmup;
   j["flight_fps"] = options.flightFps;
@@ -266,9 +268,10 @@ std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
   out += fmt::format(
-      "preset: {} (hash {:016x}), {}x{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
+      "preset: {} (hash {:016x}), {}x{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
       "warm-up\n",
       preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
+      options.skyMode == SkyMode::Reference ? ", reference sky" : "",
       options.autoExposure ? "auto" : fmt::format("{:g}", options.exposure), pathSource, pathKeys, pathDurationS,
       options.frames, options.warmup);
   out += options.flightFps > 0.0

@@ -201,7 +201,7 @@ AtmosphereDescription readAtmosphere(const Context& context, const toml::table& 
   a.mieExtinctionRatio = reader.number("mie_extinction_ratio", kMieExtinctionRatioRange).value_or(a.mieExtinctionRatio);
   a.mieAbsorption = reader.vector3("mie_absorption", kScatteringRange, true).value_or(a.mieAbsorption);
   a.mieScaleHeightM = reader.number("mie_scale_height_m", kScaleHeightRangeM).value_or(a.mieScaleHeightM);
-  a.mieG = reader.number("mie_g", kMieGRange).value_or(a.mieG);
+  a.mieG = reader.vector3("mie_g", kMieGRange, true).value_or(a.mieG);
   a.ozoneAbsorption = reader.vector3("ozone_absorption", kScatteringRange, true).value_or(a.ozoneAbsorption);
   a.ozoneCenterM = reader.number("ozone_center_m", kOzoneAltitudeRangeM).value_or(a.ozoneCenterM);
   a.ozoneWidthM = reader.number("ozone_width_m", kOzoneAltitudeRangeM).value_or(a.ozoneWidthM);
@@ -721,7 +721,7 @@ std::string canonicalForm(const PlanetDescription& d) {
       "atmosphere.ozone_center_m={}\natmosphere.ozone_width_m={}\n",
       a.enabled, formatNumber(a.heightM), vector(a.rayleighScattering), formatNumber(a.rayleighScaleHeightM),
       vector(a.mieScattering), formatNumber(a.mieExtinctionRatio), vector(a.mieAbsorption),
-      formatNumber(a.mieScaleHeightM), formatNumber(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM),
+      formatNumber(a.mieScaleHeightM), vector(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM),
       formatNumber(a.ozoneWidthM));
   const CloudDescription& cl = d.clouds;
   out += fmt::format(

@@ -136,7 +136,7 @@ struct AtmosphereDescription {
   double mieExtinctionRatio = 1.11;               // Mie extinction / scattering (aerosols absorb a little)
   glm::dvec3 mieAbsorption{0.0, 0.0, 0.0};        // extra, coloured absorption by aerosols (Mars dust eats blue)
   double mieScaleHeightM = 1'200.0;
-  double mieG = 0.76;                         // Cornette-Shanks asymmetry: forward scattering
+  glm::dvec3 mieG{0.76};                      // Cornette-Shanks asymmetry per channel: forward scattering
   glm::dvec3 ozoneAbsorption{0.0, 0.0, 0.0};  // at the layer's peak; Earth: 0.65, 1.881, 0.085 ·10⁻⁶
   double ozoneCenterM = 25'000.0;             // the ozone density is a tent around this altitude
   double ozoneWidthM = 30'000.0;              // full width of the tent
@@ -158,13 +158,13 @@ struct CloudDescription {
   double evolvePeriodS = 7'200.0;  // one cycle of the three-image cross-fade
   double opacity = 3.0;            // optical depth of a full-density column through the layer
   // Weather (issue 20): what shapes the cover from orbit.
-  double climate = 1.0;                // 0 .. 2: strength of the latitude bands (ITCZ, dry subtropics, storm tracks)
-  int cyclones = 10;                   // 0 .. 48: cyclones per hemisphere (a fifth of them tropical)
-  double cycloneRadiusM = 900'000.0;   // e-folding radius of a mid-latitude cyclone's twist
-  double swirl = 0.6;                  // 0 .. 5: turns of a cyclone's spiral arms at its centre
-  double shear = 0.35;                 // 0 .. 3: longitude (rad) the zonal winds carry the cover at their peak
-  double warp = 0.05;                  // 0 .. 1: displacement of the domain warp (planet radii)
-  int resolution = 512;                // 64 .. 2048: texels per cube face side of the cover images
+  double climate = 1.0;               // 0 .. 2: strength of the latitude bands (ITCZ, dry subtropics, storm tracks)
+  int cyclones = 10;                  // 0 .. 48: cyclones per hemisphere (a fifth of them tropical)
+  double cycloneRadiusM = 900'000.0;  // e-folding radius of a mid-latitude cyclone's twist
+  double swirl = 0.6;                 // 0 .. 5: turns of a cyclone's spiral arms at its centre
+  double shear = 0.35;                // 0 .. 3: longitude (rad) the zonal winds carry the cover at their peak
+  double warp = 0.05;                 // 0 .. 1: displacement of the domain warp (planet radii)
+  int resolution = 512;               // 64 .. 2048: texels per cube face side of the cover images
 };
 
 struct WaterDescription {
@@ -249,12 +249,12 @@ inline constexpr Range kWaveSlopeRange{0.0, 1.0};
 inline constexpr Range kSeaWindRangeMps{0.0, 40.0};  // Cox & Munk measured up to ~14 m/s; beyond, extrapolated
 inline constexpr Range kMagnitudeRange{0.0, 9.0};
 inline constexpr Range kStarBrightnessRange{0.0, 1e3};
-inline constexpr int kMaxLayers = 8;                // the height shader's fixed layer array
-inline constexpr size_t kMaxCurvePoints = 16;       // transfer and hypsometry points (gpu::kTerrainCurveKnots)
-inline constexpr size_t kMaxMaskCurvePoints = 8;    // mask curve points (gpu::kTerrainMaskKnots)
+inline constexpr int kMaxLayers = 8;                 // the height shader's fixed layer array
+inline constexpr size_t kMaxCurvePoints = 16;        // transfer and hypsometry points (gpu::kTerrainCurveKnots)
+inline constexpr size_t kMaxMaskCurvePoints = 8;     // mask curve points (gpu::kTerrainMaskKnots)
 inline constexpr Range kCurveValueRange{-1e5, 1e5};  // x and y of transfer and mask curves, y of hypsometries
-inline constexpr size_t kMaxNameBytes = 64;         // planet and layer names
-inline constexpr size_t kMaxPresetBytes = 1 << 20;  // a preset file larger than this is an error
+inline constexpr size_t kMaxNameBytes = 64;          // planet and layer names
+inline constexpr size_t kMaxPresetBytes = 1 << 20;   // a preset file larger than this is an error
 
 inline constexpr std::string_view kDefaultPresetName = "earth";
 

@@ -263,7 +263,7 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
     w.key("mie_extinction_ratio", a.mieExtinctionRatio);
     w.key("mie_absorption", vector3(a.mieAbsorption));
     w.key("mie_scale_height_m", a.mieScaleHeightM);
-    w.key("mie_g", a.mieG);
+    w.key("mie_g", vector3(a.mieG));
     w.key("ozone_absorption", vector3(a.ozoneAbsorption));
     w.key("ozone_center_m", a.ozoneCenterM);
     w.key("ozone_width_m", a.ozoneWidthM);

@@ -17,6 +17,9 @@ using gpu::kMultiScatteringDirections;
 using gpu::kMultiScatteringGroundAlbedo;
 using gpu::kMultiScatteringSize;
 using gpu::kMultiScatteringSteps;
+using gpu::kSkyViewHeight;
+using gpu::kSkyViewSteps;
+using gpu::kSkyViewWidth;
 using gpu::kTransmittanceHeight;
 using gpu::kTransmittanceSteps;
 using gpu::kTransmittanceWidth;
@@ -49,6 +52,7 @@ struct AtmosphereKernel {
   const MultipleScatteringTable* multipleScatteringTable = nullptr;
 
   static real cos(real x) { return std::cos(x); }
+  static real acos(real x) { return std::acos(x); }
 
   // The sun's transmittance with the planet's shadow: zero once the sun is below the horizon
   // of altitude h (the GPU softens this edge over the sun's disc; the reference is sharp, except
@@ -94,7 +98,8 @@ AtmosphereParams makeAtmosphereParams(const PlanetDescription& planet) {
   }
   p.rayleigh = glm::vec4(glm::vec3(a.rayleighScattering), float(1.0 / a.rayleighScaleHeightM));
   p.mieScattering = glm::vec4(glm::vec3(a.mieScattering), float(1.0 / a.mieScaleHeightM));
-  p.mieExtinction = glm::vec4(glm::vec3(a.mieScattering * a.mieExtinctionRatio + a.mieAbsorption), float(a.mieG));
+  p.mieExtinction = glm::vec4(glm::vec3(a.mieScattering * a.mieExtinctionRatio + a.mieAbsorption), 0.0f);
+  p.mieG = glm::vec4(glm::vec3(a.mieG), 0.0f);
   p.ozone = glm::vec4(glm::vec3(a.ozoneAbsorption), float(a.ozoneCenterM));
   return p;
 }
@@ -162,7 +167,8 @@ MultipleScatteringTable multipleScatteringTable(const AtmosphereParams& atmosphe
   table.transfer.assign(texels, glm::dvec3(0.0));
   if (atmosphere.radii.w == 0.0f) return table;  // no air: nothing scatters
   // The transmittance table as atmosphere_transmittance.comp builds it, in double.
-  std::vector<glm::dvec3> transmittance(size_t(kTransmittanceWidth) * kTransmittanceHeight);
+  std::vector<glm::dvec3>& transmittance = table.transmittance;
+  transmittance.resize(size_t(kTransmittanceWidth) * kTransmittanceHeight);
   parallelFor(transmittance.size(), 256, 0, [&](size_t begin, size_t end) {
     Kernel kernel;
     for (size_t i = begin; i < end; ++i) {
@@ -193,6 +199,23 @@ MultipleScatteringPoint multipleScatteringAt(const AtmosphereParams& atmosphere,
   if (atmosphere.radii.w == 0.0f) return point;
   kernel.multipleScatteringTexel(atmosphere, altitudeM, muS, point.psi, point.transfer);
   return point;
+}
+
+std::vector<glm::dvec3> skyViewTable(const AtmosphereParams& atmosphere, double altitudeM, double groundM, double muS,
+                                     const MultipleScatteringTable& multipleScattering) {
+  std::vector<glm::dvec3> table(size_t(gpu::kSkyViewWidth) * gpu::kSkyViewHeight, glm::dvec3(0.0));
+  if (atmosphere.radii.w == 0.0f) return table;
+  parallelFor(table.size(), 64, 0, [&](size_t begin, size_t end) {
+    Kernel kernel;
+    kernel.transmittanceTable = &multipleScattering.transmittance;
+    kernel.multipleScatteringTable = &multipleScattering;
+    for (size_t i = begin; i < end; ++i) {
+      const double u = (double(i % gpu::kSkyViewWidth) + 0.5) / gpu::kSkyViewWidth;
+      const double v = (double(i / gpu::kSkyViewWidth) + 0.5) / gpu::kSkyViewHeight;
+      table[i] = kernel.skyViewTexel(atmosphere, altitudeM, groundM, muS, u, v);
+    }
+  });
+  return table;
 }
 
 glm::dvec3 skyIrradiance(const AtmosphereParams& atmosphere, double muS) {

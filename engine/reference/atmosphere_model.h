@@ -55,6 +55,8 @@ SkySample skyRadiance(const gpu::AtmosphereParams& atmosphere, double altitudeM,
 struct MultipleScatteringTable {
   std::vector<glm::dvec3> psi;       // Ψ_ms: radiance per steradian per unit sun irradiance
   std::vector<glm::dvec3> transfer;  // f_ms: the share of isotropic light one more scattering returns
+  // The double transmittance table it was built with (the GPU's size and steps; empty without air).
+  std::vector<glm::dvec3> transmittance;
   // Ψ_ms at altitude h for a sun at zenith cosine muS, bilinear between texel centres (clamped
   // at the edges) as the GPU's sampler reads the table.
   glm::dvec3 sample(const gpu::AtmosphereParams& atmosphere, double altitudeM, double muS) const;
@@ -73,6 +75,14 @@ struct MultipleScatteringPoint {
 };
 MultipleScatteringPoint multipleScatteringAt(const gpu::AtmosphereParams& atmosphere, double altitudeM, double muS,
                                              uint32_t sunSteps = 512);
+
+// The sky-view table (Hillaire 2020, §5.3; shaders/sky_view.comp) in double, for a viewpoint at
+// altitude h over the ground sphere at hGround and a sun at zenith cosine muS: kSkyViewWidth ×
+// kSkyViewHeight texels, row-major, each the total sky radiance along its direction (the GPU's
+// steps, the sun's transmittance and Ψ_ms read from `multipleScattering`'s double tables as the
+// GPU reads its own).
+std::vector<glm::dvec3> skyViewTable(const gpu::AtmosphereParams& atmosphere, double altitudeM, double groundM,
+                                     double muS, const MultipleScatteringTable& multipleScattering);
 
 // Irradiance from the sky on a horizontal surface at the ground, for the sun at zenith
 // cosine muS: the hemisphere integral of skyRadiance · cos θ (no ground bounce).

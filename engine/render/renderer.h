@@ -142,6 +142,7 @@ class Renderer {
 
   TerrainPass& terrain() { return *bodies_[0].terrain; }
   TerrainPass& terrain(size_t body) { return *bodies_.at(body).terrain; }
+  SkyPass& sky(size_t body = 0) { return *bodies_.at(body).sky; }
   size_t bodyCount() const { return bodies_.size(); }
   // The body the last prepared frame treated as the camera's own.
   size_t primaryBody() const { return primary_; }

@@ -1,12 +1,19 @@
 #include "render/sky_pass.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <glm/gtc/packing.hpp>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "render/sky_tables.h"
+#include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
+#include "spv/sky_reference.comp.h"
+#include "spv/sky_view.comp.h"
+#include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/timer.h"
@@ -25,7 +32,25 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // depth
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // cloud cover
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // multiple scattering (reference)
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // sky view
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial light
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial transmittance
 };
+
+// The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
+constexpr VkDescriptorType kTableBindings[] = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // per-frame values (SkyUniforms)
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // multiple scattering
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // sky view
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial light
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial transmittance
+};
+
+constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkImageUsageFlags kTableUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 void validateSkySettings(const SkySettings& settings) {
   if (settings.viewSamples < 2 || settings.viewSamples > 256)
@@ -35,6 +60,14 @@ void validateSkySettings(const SkySettings& settings) {
 }
 
 }  // namespace
+
+std::string_view skyModeName(SkyMode mode) { return mode == SkyMode::Reference ? "reference" : "tables"; }
+
+SkyMode parseSkyMode(std::string_view name) {
+  if (name == "tables") return SkyMode::Tables;
+  if (name == "reference") return SkyMode::Reference;
+  throw Error(fmt::format("sky mode '{}' is not tables or reference", name));
+}
 
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
                  const SkySettings& settings)
@@ -51,17 +84,63 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   setLayout_ = {context, vk::createSetLayout(context, kComposeBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   pool_ = {context, vk::createDescriptorPool(context, kComposeBindings, vk::kFramesInFlight)};
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), 0, 0)};
-  pipeline_ = {context, vk::createComputePipelineWithLayout(context, kSpv_sky_comp, layout_.get())};
+  skyView_ = {context,
+              vk::createImage2D(context, {gpu::kSkyViewWidth, gpu::kSkyViewHeight}, kTableFormat, kTableUsage)};
+  aerialLight_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize,
+                                                  kTableFormat, kTableUsage)};
+  aerialTransmittance_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize},
+                                                          gpu::kAerialSize, kTableFormat, kTableUsage)};
+  tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
+  tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
+  tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
+  constexpr VkImageLayout kGeneral = VK_IMAGE_LAYOUT_GENERAL;
+  constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     VkDescriptorSet set = sets_[slot] = vk::allocateSet(context, pool_.get(), setLayout_.get());
     vk::writeBufferDescriptor(context, set, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                               *uniforms_[slot]);
-    vk::writeImageDescriptor(context, set, gpu::kSkyBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingTransmittance, kSampled, tables.transmittanceView(),
+                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingClouds, kSampled, tables.clouds().view(),
+                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.clouds().sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingMultipleScattering, kSampled,
+                             tables.multipleScatteringView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingSkyView, kSampled, skyView_->view, kGeneral,
+                             tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingAerialLight, kSampled, aerialLight_->view, kGeneral,
+                             tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingAerialTransmittance, kSampled, aerialTransmittance_->view,
+                             kGeneral, tables.sampler());
+
+    VkDescriptorSet tableSet = tableSets_[slot] = vk::allocateSet(context, tablePool_.get(), tableSetLayout_.get());
+    vk::writeBufferDescriptor(context, tableSet, gpu::kSkyTableBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                              *uniforms_[slot]);
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingTransmittance, kSampled,
                              tables.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
-    vk::writeImageDescriptor(context, set, gpu::kSkyBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             tables.clouds().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                             tables.clouds().sampler());
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingMultipleScattering, kSampled,
+                             tables.multipleScatteringView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             tables.sampler());
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingSkyView, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             skyView_->view, kGeneral);
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingAerialLight, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             aerialLight_->view, kGeneral);
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingAerialTransmittance,
+                             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, aerialTransmittance_->view, kGeneral);
   }
+  makePipelines();
+}
+
+void SkyPass::makePipelines() {
+  if (settings_.mode == SkyMode::Tables && !tablesCompose_.get()) {
+    tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get())};
+    skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
+    aerialBuild_ = {context_,
+                    vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+  }
+  if (settings_.mode == SkyMode::Reference && !referenceCompose_.get())
+    referenceCompose_ = {context_,
+                         vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp, layout_.get())};
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
@@ -78,6 +157,7 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
 void SkyPass::setSettings(const SkySettings& settings) {
   validateSkySettings(settings);
   settings_ = settings;
+  makePipelines();
 }
 
 void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot) {
@@ -100,18 +180,66 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
   const double lowest = planet_.hasOcean ? planet_.seaLevelM : view.lowestSurfaceM;
-  u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, 0.0f, 0.0f);
+  // The sphere a ray that met no geometry ends on: the radius sphere under a sea; without one,
+  // the deepest terrain when that is below it (basins seen past the radius sphere's horizon).
+  const double groundSphere = planet_.hasOcean ? 0.0 : std::min(lowest, 0.0);
+  u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, float(groundSphere), 0.0f);
+  // The aerial-perspective slices (shaders/sky_aerial.glsl): from inside the air, out to the
+  // farthest distance a ray runs in it, past the ground sphere's horizon to the top.
+  const double radius = planet_.radiusM, top = planet_.atmosphere.heightM;
+  const double altitude = std::max(view.altitudeM, groundSphere);
+  const bool above = view.altitudeM >= top;
+  const double toHorizon = std::sqrt((altitude - groundSphere) * (2.0 * radius + altitude + groundSphere));
+  const double horizonToTop = std::sqrt(std::max(top - groundSphere, 0.0) * (2.0 * radius + top + groundSphere));
+  u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), 0.0f, 0.0f);
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
 }
 
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "sky");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
   const uint32_t group = gpu::kSkyWorkgroupSize;
+  const bool tables = settings_.mode == SkyMode::Tables;
+  if (tables) {
+    const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    if (!tablesInitialised_) {
+      // The tables start undefined and stay in GENERAL: written by the builds, sampled after.
+      for (vk::Owned<vk::Image>* image : {&skyView_, &aerialLight_, &aerialTransmittance_})
+        vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      tablesInitialised_ = true;
+    } else {
+      // The previous frame's compose (earlier on the queue) has read the tables before they are rewritten.
+      vk::memoryBarrier(cmd, compute, 0, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    }
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tableLayout_.get(), 0, 1, &tableSets_[slot_], 0,
+                            nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
+    vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
+    vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
+    // The compose samples what the builds wrote.
+    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tables ? tablesCompose_.get() : referenceCompose_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
   vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
   if (timer) timer->end(cmd);
+}
+
+std::vector<glm::vec4> SkyPass::readSkyView() {
+  std::vector<uint8_t> bytes = vk::readbackImage(context_, *skyView_);
+  std::vector<glm::vec4> texels(size_t(gpu::kSkyViewWidth) * gpu::kSkyViewHeight);
+  const uint16_t* halves = reinterpret_cast<const uint16_t*>(bytes.data());
+  for (size_t i = 0; i < texels.size(); ++i)
+    for (int c = 0; c < 4; ++c) texels[i][c] = glm::unpackHalf1x16(halves[4 * i + size_t(c)]);
+  // Back to what the builds and the compose expect.
+  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
+    vk::transitionImage(cmd, *skyView_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  });
+  return texels;
 }
 
 }  // namespace planet

@@ -1,10 +1,15 @@
-// The sky pass (issue 4, point 2; DESIGN.md "One frame", step 3): after stars, terrain and
-// water are drawn into the HDR target, a compute pass adds the atmosphere (sky, aerial
-// perspective), the clouds and their shadows (cloud_cover.h), the sun's disc and the star fading
-// (shaders/sky.comp). The tonemap pass (tonemap_pass.h) then maps the HDR target to the display.
+// The sky pass (issue 4, point 2; issue 21, points 1 and 2; DESIGN.md "One frame", step 3):
+// after stars, terrain and water are drawn into the HDR target, compute passes build this
+// frame's sky-view table and aerial-perspective volume (shaders/sky_view.comp,
+// aerial_perspective.comp) and compose the atmosphere (sky, aerial perspective) from them, with
+// the clouds and their shadows (cloud_cover.h), the sun's disc and the star fading
+// (shaders/sky.comp). In the reference mode the compose pass marches every pixel's ray instead.
+// The tonemap pass (tonemap_pass.h) then maps the HDR target to the display.
 #pragma once
 
 #include <cstdint>
+#include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -25,8 +30,16 @@ namespace planet {
 
 class SkyTables;
 
+// How the compose pass gets the atmosphere: from the per-frame tables (the default), or by
+// marching each pixel's ray through the air (`--sky reference`, the tables' test reference).
+enum class SkyMode { Tables, Reference };
+// "tables" / "reference"; parseSkyMode throws planet::Error naming anything else.
+std::string_view skyModeName(SkyMode mode);
+SkyMode parseSkyMode(std::string_view name);
+
 struct SkySettings {
-  uint32_t viewSamples = 16;  // atmosphere samples along each pixel's ray (split over cloud crossings)
+  SkyMode mode = SkyMode::Tables;
+  uint32_t viewSamples = 64;  // reference mode: samples along each pixel's ray (split over cloud crossings)
   double exposure = 10.0;     // HDR scale before the tonemap curve
   bool clouds = true;         // draw the preset's clouds (if it has any)
 };
@@ -58,7 +71,7 @@ struct SkyView {
 
 class SkyPass {
  public:
-  // Timing scopes a frame records at most: "sky".
+  // Timing scopes a frame records at most: "sky" (the per-frame tables and the compose).
   static constexpr uint32_t kTimingScopes = 1;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
@@ -71,16 +84,24 @@ class SkyPass {
   // vk::kFramesInFlight): call it while no frame recorded for that slot is executing; a frame of
   // the other slot may be.
   void prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot = 0);
-  // Compose, reading the last prepared frame's uniforms: hdr in GENERAL and depth in
-  // SHADER_READ_ONLY_OPTIMAL, both after the draws.
+  // The tables (tables mode) and the compose, reading the last prepared frame's uniforms: hdr in
+  // GENERAL and depth in SHADER_READ_ONLY_OPTIMAL, both after the draws.
   void recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   const SkySettings& settings() const { return settings_; }
-  // Takes effect at the next prepare() (every field is a per-frame uniform); throws
-  // planet::Error for samples outside 2..256 or a non-positive exposure.
+  // Takes effect at the next prepare() (every field is a per-frame uniform or a pipeline already
+  // made or made here); throws planet::Error for samples outside 2..256 or a non-positive exposure.
   void setSettings(const SkySettings& settings);
 
+  // For tests: this frame's sky-view table (rgb, row-major kSkyViewWidth × kSkyViewHeight), after
+  // a frame recorded in tables mode has completed.
+  std::vector<glm::vec4> readSkyView();
+
  private:
+  // Makes the pipelines the settings' mode needs (compiling is milliseconds to a second on
+  // lavapipe, so the mode not in use costs nothing).
+  void makePipelines();
+
   vk::Context& context_;
   PlanetDescription planet_;
   const SkyTables& tables_;
@@ -94,8 +115,20 @@ class SkyPass {
   vk::Owned<VkDescriptorSetLayout> setLayout_;
   vk::Owned<VkDescriptorPool> pool_;
   vk::Owned<VkPipelineLayout> layout_;
-  vk::Owned<VkPipeline> pipeline_;
+  vk::Owned<VkPipeline> tablesCompose_;             // sky.comp
+  vk::Owned<VkPipeline> referenceCompose_;          // sky.comp with SKY_REFERENCE
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
+  // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
+  vk::Owned<vk::Image> skyView_;
+  vk::Owned<vk::Image> aerialLight_;
+  vk::Owned<vk::Image> aerialTransmittance_;
+  vk::Owned<VkDescriptorSetLayout> tableSetLayout_;
+  vk::Owned<VkDescriptorPool> tablePool_;
+  vk::Owned<VkPipelineLayout> tableLayout_;
+  vk::Owned<VkPipeline> skyViewBuild_;
+  vk::Owned<VkPipeline> aerialBuild_;
+  VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
+  bool tablesInitialised_ = false;                       // the table images left UNDEFINED for GENERAL
 };
 
 }  // namespace planet

@@ -19,7 +19,7 @@ vk::Image createTransmittance(vk::Context& context) {
 }
 
 // vec4s sky_ray.comp writes per ray.
-constexpr size_t kRayResultTexels = 5;
+constexpr size_t kRayResultTexels = 6;
 
 vk::Image createMultipleScattering(vk::Context& context) {
   return vk::createImage2D(context, {gpu::kMultiScatteringSize, gpu::kMultiScatteringSize},
@@ -163,7 +163,8 @@ std::vector<SkyTables::RayResult> SkyTables::evaluateRays(std::span<const RayQue
   vk::readbackBuffer(context_, *output, values.data(), outputBytes);
   for (size_t i = 0; i < rays.size(); ++i) {
     const glm::vec4* v = &values[kRayResultTexels * i];
-    results[i] = {glm::dvec3(v[0]), glm::dvec3(v[1]), glm::dvec3(v[2]), glm::dvec3(v[3]), glm::dvec3(v[4])};
+    results[i] = {glm::dvec3(v[0]), glm::dvec3(v[1]), glm::dvec3(v[2]),
+                  glm::dvec3(v[3]), glm::dvec3(v[4]), glm::dvec3(v[5])};
   }
   return results;
 }

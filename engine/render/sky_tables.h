@@ -52,9 +52,9 @@ class SkyTables {
   // For tests: the multiple-scattering table (rgb Ψ_ms, a f_ms of green; kMultiScatteringSize²).
   std::vector<glm::vec4> readMultipleScattering();
 
-  // Rays through the built tables (shaders/sky_ray.comp), blocking: per ray, the sky pass's
-  // per-pixel march with `referenceSteps` samples, and the tables' single and multiple
-  // scattering with `tableSteps` samples (planet sky, tests).
+  // Rays through the built tables (shaders/sky_ray.comp), blocking: per ray, the reference sky
+  // pass's per-pixel march with `referenceSteps` samples, and the tables' single and multiple
+  // scattering by the midpoint rule with `tableSteps` samples (planet sky, tests).
   struct RayQuery {
     double altitudeM = 0.0;  // above the planet's radius
     double mu = 1.0;         // view zenith cosine
@@ -62,11 +62,12 @@ class SkyTables {
     double nu = 1.0;         // cosine between the view and the sun
   };
   struct RayResult {
-    glm::dvec3 reference;               // single scattering, sky.comp's march
+    glm::dvec3 reference;               // single scattering, the reference sky.comp's march
     glm::dvec3 single;                  // single scattering, the tables' march
     glm::dvec3 multiple;                // second and higher orders, the tables' march
     glm::dvec3 transmittance;           // along the ray's stretch inside the atmosphere (the tables' march)
     glm::dvec3 referenceTransmittance;  // the same by the sky pass's march
+    glm::dvec3 referenceTotal;          // single and multiple scattering, the reference sky.comp's march
   };
   std::vector<RayResult> evaluateRays(std::span<const RayQuery> rays, uint32_t referenceSteps, uint32_t tableSteps);
 

@@ -57,7 +57,7 @@ QualityPreset qualityPreset(ViewQuality quality) {
       p.renderScale = 1.0;
       p.mesh = {30, 24, 256};
       p.subPixelRings = 8;
-      p.atmosphereSamples = 32;
+      p.atmosphereSamples = 128;
       p.patches = true;
       p.patchResolution = 1024;
       break;

@@ -18,7 +18,7 @@ struct QualityPreset {
   double renderScale = 1.0;  // render target size / window size (the frame is scaled up by a blit)
   ClipmapParams mesh;        // levels, rings per level, vertices per ring
   uint32_t subPixelRings = 8;
-  uint32_t atmosphereSamples = 16;  // samples along each pixel's ray in the compose pass
+  uint32_t atmosphereSamples = 64;  // samples along each pixel's ray of the reference sky (--sky reference)
   bool patches = true;              // per-pixel detail from the patch textures
   uint32_t patchResolution = 512;   // texels per side of each patch level
   // Stars down to this apparent magnitude at most (the preset may stop brighter): lavapipe

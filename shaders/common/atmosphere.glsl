@@ -134,12 +134,17 @@ vec2 transmittanceAltitudeMu(IN(AtmosphereParams) a, real u, real v) {
   return vec2(h, clamp(mu, real(-1.0f), real(1.0f)));
 }
 
-// Phase functions (per steradian): Rayleigh, and Cornette-Shanks for Mie.
+// Phase functions (per steradian): Rayleigh, and Cornette-Shanks for Mie (miePhases: with each
+// channel's own asymmetry g; particles that are large for the wavelength scatter shorter
+// wavelengths more forward).
 real rayleighPhase(real nu) { return real(3.0f) / (real(16.0f) * kAtmospherePi) * (real(1.0f) + nu * nu); }
 real miePhase(real g, real nu) {
   real k = real(3.0f) / (real(8.0f) * kAtmospherePi) * (real(1.0f) - g * g) / (real(2.0f) + g * g);
   real base = real(1.0f) + g * g - real(2.0f) * g * nu;
   return k * (real(1.0f) + nu * nu) / (base * sqrt(base));
+}
+vec3 miePhases(IN(AtmosphereParams) a, real nu) {
+  return vec3(miePhase(real(a.mieG.x), nu), miePhase(real(a.mieG.y), nu), miePhase(real(a.mieG.z), nu));
 }
 
 // Single-scattered radiance reaching the start of a ray segment (altitude h, zenith cosine mu,
@@ -169,7 +174,7 @@ void singleScattering(IN(AtmosphereParams) a, real h, real mu, real muS, real nu
     depth = depth + extinction * dt;
   }
   real sun = real(a.ozoneSun.y);
-  radiance = (rayleighSum * rayleighPhase(nu) + mieSum * miePhase(real(a.mieExtinction.w), nu)) * (dt * sun);
+  radiance = (rayleighSum * rayleighPhase(nu) + mieSum * miePhases(a, nu)) * (dt * sun);
   transmittance = vec3(exp(-depth.x), exp(-depth.y), exp(-depth.z));
 }
 
@@ -290,6 +295,139 @@ vec3 multipleScattering(IN(AtmosphereParams) a, real h, real mu, real muS, real 
     depth = depth + extinction * dt;
   }
   return sum * (dt * real(a.ozoneSun.y));
+}
+
+// One step of the sky march (Hillaire 2020, §5.1): the sample at distance t from the start of a
+// segment (altitude h, zenith cosine mu, sun zenith cosine muS, view-sun cosine nu) stands for a
+// step of length dt; its single scattering (sun through the transmittance table, phases given)
+// and multiple scattering (σ_s · Ψ_ms) are integrated over the step in closed form for a uniform
+// medium, S · (1 − e^(−σ_t dt)) / σ_t, which stays right for the long steps of rays toward the
+// horizon. Adds to `single` and `total` (per the params' sun irradiance) through the segment's
+// transmittance so far, and moves that transmittance past the step.
+void scatteringStep(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real phaseR, vec3 phaseM, real t,
+                    real dt, INOUT(vec3) single, INOUT(vec3) total, INOUT(vec3) transmittance) {
+  real R = real(a.radii.x);
+  real ht = altitudeAlong(R, h, mu, t);
+  real muSt = clamp(((R + h) * muS + t * nu) / (R + ht), real(-1.0f), real(1.0f));
+  vec3 rayleigh = rayleighScatteringAt(a, ht);
+  vec3 mie = mieScatteringAt(a, ht);
+  vec3 stepDepth = extinctionAt(a, ht) * dt;
+  vec3 weight = vec3(transmittance.x * stepTransmittanceMean(stepDepth.x),
+                     transmittance.y * stepTransmittanceMean(stepDepth.y),
+                     transmittance.z * stepTransmittanceMean(stepDepth.z)) * (dt * real(a.ozoneSun.y));
+  vec3 once = SUN_TRANSMITTANCE(a, ht, muSt) * (rayleigh * phaseR + mie * phaseM) * weight;
+  single = single + once;
+  total = total + once + (rayleigh + mie) * MULTIPLE_SCATTERING(a, ht, muSt) * weight;
+  transmittance = transmittance * vec3(exp(-stepDepth.x), exp(-stepDepth.y), exp(-stepDepth.z));
+}
+
+// Single (`single`) and single plus multiple (`total`) scattering toward the start of a segment of
+// length tMax, and its transmittance, in `steps` steps of scatteringStep: equal steps, or with
+// `quadratic` the step ends at tMax (i / steps)², short near the start where a view from inside
+// the air sees its densest part and long far away.
+void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real tMax, uint steps, bool quadratic,
+                     OUT(vec3) single, OUT(vec3) total, OUT(vec3) transmittance) {
+  real phaseR = rayleighPhase(nu);
+  vec3 phaseM = miePhases(a, nu);
+  single = vec3(real(0.0f), real(0.0f), real(0.0f));
+  total = vec3(real(0.0f), real(0.0f), real(0.0f));
+  transmittance = vec3(real(1.0f), real(1.0f), real(1.0f));
+  real tPrevious = real(0.0f);
+  for (uint i = 0u; i < steps; ++i) {
+    real x = real(i + 1u) / real(steps);
+    real t = tMax * (quadratic ? x * x : x);
+    real dt = t - tPrevious;
+    scatteringStep(a, h, mu, muS, nu, phaseR, phaseM, tPrevious + real(0.5f) * dt, dt, single, total, transmittance);
+    tPrevious = t;
+  }
+}
+
+// The stretch of a view ray inside the atmosphere, from altitude h along zenith cosine mu: x =
+// where it starts (0 inside; outside, where it enters the top), y = where it ends (it leaves the
+// top, or meets the ground sphere at altitude hGround ≤ h). y ≤ x when it misses the air.
+vec2 atmosphereStretch(IN(AtmosphereParams) a, real h, real mu, real hGround) {
+  real R = real(a.radii.x);
+  vec2 topHits = raySphere(R, h, mu, real(a.radii.y));
+  bool outside = h >= real(a.radii.y);
+  real tStart = outside ? topHits.x : real(0.0f);
+  real tExit = outside ? topHits.y : topHits.x;
+  if (tStart < real(0.0f) || tExit <= tStart) return vec2(real(0.0f), real(-1.0f));
+  vec2 ground = raySphere(R, h, mu, min(hGround, h));
+  real tEnd = (mu < real(0.0f) && ground.x >= real(0.0f)) ? min(ground.x, tExit) : tExit;
+  return vec2(tStart, tEnd);
+}
+
+// The sky along a whole view ray from altitude h (inside or above the atmosphere) to where it
+// leaves the air or meets the ground sphere at hGround (black: the ground itself is drawn by the
+// terrain), in `steps` steps: quadratic from inside, equal from outside (where the densest air is
+// anywhere along the ray).
+void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real hGround, uint steps, OUT(vec3) single,
+              OUT(vec3) total, OUT(vec3) transmittance) {
+  single = vec3(real(0.0f), real(0.0f), real(0.0f));
+  total = vec3(real(0.0f), real(0.0f), real(0.0f));
+  transmittance = vec3(real(1.0f), real(1.0f), real(1.0f));
+  vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+  if (a.radii.w < 0.5f || stretch.y <= stretch.x) return;
+  real R = real(a.radii.x);
+  real r = R + h;
+  real h0 = altitudeAlong(R, h, mu, stretch.x);
+  real mu0 = clamp((r * mu + stretch.x) / (R + h0), real(-1.0f), real(1.0f));
+  real muS0 = clamp((r * muS + stretch.x * nu) / (R + h0), real(-1.0f), real(1.0f));
+  scatteringAlong(a, h0, mu0, muS0, nu, stretch.y - stretch.x, steps, h < real(a.radii.y), single, total,
+                  transmittance);
+}
+
+// The sky-view table (Hillaire 2020, §5.3), rebuilt for each frame's viewpoint and sun: the sky
+// radiance around the viewpoint by view azimuth from the sun (u: 0 toward the sun .. π away; the
+// sky is symmetric about the sun's vertical plane, so half the circle is enough) and view zenith
+// angle θ (v). The rows are spread non-linearly toward the horizon of the ground sphere θh,
+// where the sky changes fastest: above it v = (1 − sqrt((θh − θ) / (θh − θmin))) / 2, below it
+// v = (1 + sqrt((θ − θh) / (π − θh))) / 2. θmin is the zenith inside the atmosphere; above its top
+// it is the direction that grazes the top, so that from orbit the rows hold only the rays that
+// cross the shell and gather at the limb.
+vec2 skyViewZenithRange(IN(AtmosphereParams) a, real h, real hGround) {
+  real R = real(a.radii.x);
+  real top = real(a.radii.y);
+  real r = R + h;
+  real hg = min(hGround, h);
+  real horizonMu = -sqrt(max((h - hg) * (real(2.0f) * R + h + hg), real(0.0f))) / r;
+  real start = real(0.0f);
+  if (h > top) start = acos(-sqrt((h - top) * (real(2.0f) * R + h + top)) / r);
+  return vec2(start, acos(horizonMu));
+}
+
+real skyViewV(real theta, vec2 range) {
+  if (theta <= range.y) {
+    real x = clamp((range.y - theta) / max(range.y - range.x, real(1.0e-6f)), real(0.0f), real(1.0f));
+    return real(0.5f) * (real(1.0f) - sqrt(x));
+  }
+  real x = clamp((theta - range.y) / max(kAtmospherePi - range.y, real(1.0e-6f)), real(0.0f), real(1.0f));
+  return real(0.5f) * (real(1.0f) + sqrt(x));
+}
+
+real skyViewTheta(real v, vec2 range) {
+  if (v < real(0.5f)) {
+    real s = real(1.0f) - real(2.0f) * v;
+    return range.y - s * s * (range.y - range.x);
+  }
+  real s = real(2.0f) * v - real(1.0f);
+  return range.y + s * s * (kAtmospherePi - range.y);
+}
+
+// The table's texel (u, v) in [0, 1] (texel centres at the ends of each range) for a viewpoint at
+// altitude h over the ground sphere at hGround and a sun at zenith cosine muS: the total sky
+// radiance along its direction, in kSkyViewSteps steps.
+vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u, real v) {
+  vec2 range = skyViewZenithRange(a, h, hGround);
+  real theta = skyViewTheta(clamp(texelToUnit(v, real(kSkyViewHeight)), real(0.0f), real(1.0f)), range);
+  real mu = cos(theta);
+  real phi = kAtmospherePi * clamp(texelToUnit(u, real(kSkyViewWidth)), real(0.0f), real(1.0f));
+  real sinV = sqrt(max(real(1.0f) - mu * mu, real(0.0f)));
+  real sinS = sqrt(max(real(1.0f) - muS * muS, real(0.0f)));
+  real nu = clamp(mu * muS + sinV * sinS * cos(phi), real(-1.0f), real(1.0f));
+  vec3 single, total, transmittance;
+  skyAlong(a, h, mu, muS, nu, hGround, kSkyViewSteps, single, total, transmittance);
+  return total;
 }
 #endif
 

@@ -107,7 +107,7 @@ struct FrameUniforms {
   // Seed 000's schemes and seed 004's polar caps (shaders/common/color_schemes.glsl).
   SchemeParams scheme;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2032)
+GPU_ASSERT_SIZE(FrameUniforms, 2048)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

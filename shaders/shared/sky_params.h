@@ -16,11 +16,36 @@ GPU_CONST uint kTransmittanceSteps = 500u;  // midpoint steps of the optical-dep
 GPU_CONST uint kSkyWorkgroupSize = 8u;      // 8×8 invocations per group (compose, tables)
 
 // Bindings of the sky compose pass (set 0).
-GPU_CONST uint kSkyBindingUniforms = 0u;       // uniform SkyUniforms
-GPU_CONST uint kSkyBindingColor = 1u;          // image2D rgba16f: the HDR frame, read and written in place
-GPU_CONST uint kSkyBindingDepth = 2u;          // sampler2D: the frame's reversed-Z depth
-GPU_CONST uint kSkyBindingTransmittance = 3u;  // sampler2D: the transmittance table
-GPU_CONST uint kSkyBindingClouds = 4u;         // samplerCube: the three cloud cover images (rgb)
+GPU_CONST uint kSkyBindingUniforms = 0u;             // uniform SkyUniforms
+GPU_CONST uint kSkyBindingColor = 1u;                // image2D rgba16f: the HDR frame, read and written in place
+GPU_CONST uint kSkyBindingDepth = 2u;                // sampler2D: the frame's reversed-Z depth
+GPU_CONST uint kSkyBindingTransmittance = 3u;        // sampler2D: the transmittance table
+GPU_CONST uint kSkyBindingClouds = 4u;               // samplerCube: the three cloud cover images (rgb)
+GPU_CONST uint kSkyBindingMultipleScattering = 5u;   // sampler2D: Ψ_ms (the reference march)
+GPU_CONST uint kSkyBindingSkyView = 6u;              // sampler2D: the sky-view table (the tables' compose)
+GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler2DArray: in-scattered light per froxel
+GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler2DArray: transmittance per froxel
+
+// The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
+// aerial_perspective.comp before the compose pass, from the same SkyUniforms.
+// Sky-view table: RGBA16F, rgb = sky radiance; u = view azimuth from the sun's over 0..π (the
+// sky is symmetric about the sun's vertical plane: 192 columns over the whole circle), v = view
+// zenith angle, rows gathered toward the horizon (common/atmosphere.glsl, skyViewV).
+GPU_CONST uint kSkyViewWidth = 96u;
+GPU_CONST uint kSkyViewHeight = 108u;
+GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic from inside the air)
+// Aerial-perspective volume: kAerialSize² columns over the screen, kAerialSize slices along each
+// column's ray (rgba16f 2D arrays, one layer per slice): rgb = light scattered toward the camera
+// and transmittance from the camera to the slice's far end.
+GPU_CONST uint kAerialSize = 32u;
+GPU_CONST uint kAerialStepsPerSlice = 2u;
+// Bindings of the per-frame table builds (set 0).
+GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (storage buffer)
+GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D
+GPU_CONST uint kSkyTableBindingMultipleScattering = 2u;   // sampler2D
+GPU_CONST uint kSkyTableBindingSkyView = 3u;              // image2D rgba16f, written
+GPU_CONST uint kSkyTableBindingAerialLight = 4u;          // image2DArray rgba16f, written
+GPU_CONST uint kSkyTableBindingAerialTransmittance = 5u;  // image2DArray rgba16f, written
 
 // The weather that shapes the cloud cover (shaders/clouds_cover.comp), one storage buffer
 // written once per planet by engine/render/cloud_cover.cpp.
@@ -54,11 +79,12 @@ struct AtmosphereParams {
                // is air
   vec4 rayleigh;       // xyz: β_R per metre at the ground, w: 1 / Rayleigh scale height
   vec4 mieScattering;  // xyz: β_M, w: 1 / Mie scale height
-  vec4 mieExtinction;  // xyz: β_M · extinction ratio, w: g
+  vec4 mieExtinction;  // xyz: β_M · extinction ratio, w: unused
   vec4 ozone;          // xyz: ozone absorption at the peak, w: peak altitude (m)
   vec4 ozoneSun;       // x: ozone half width (m), y: sun irradiance, z, w: unused
+  vec4 mieG;           // xyz: Cornette-Shanks asymmetry g per channel, w: unused
 };
-GPU_ASSERT_SIZE(AtmosphereParams, 96)
+GPU_ASSERT_SIZE(AtmosphereParams, 112)
 
 struct SkyUniforms {
   AtmosphereParams atmosphere;
@@ -75,18 +101,23 @@ struct SkyUniforms {
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
   vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc
-  vec4 surface;        // x: lowest surface (m above R: the sea level with a sea, else the deepest terrain), y: 1 with a sea
+  vec4 surface;  // x: lowest surface (m above R: the sea level with a sea, else the deepest terrain), y: 1 with a sea,
+                 // z: the ground sphere (m above R) a ray that met no geometry ends on, w: unused
+  vec4 aerial;   // slices of the aerial-perspective volume: x: 1 when the camera is above the top of the
+                 // atmosphere (each column's slices split its own stretch through the air evenly), else 0
+                 // (slice k ends at distance y · ((k + 1) / kAerialSize)²); y: that farthest distance (m);
+                 // z, w: unused
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[16];
 };
-GPU_ASSERT_SIZE(SkyUniforms, 624)
+GPU_ASSERT_SIZE(SkyUniforms, 656)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
 // unit sun irradiance, the isotropic phase included), a = the transfer f_ms of the green channel.
-GPU_CONST uint kMultiScatteringSize = 32u;        // texels along each axis
-GPU_CONST uint kMultiScatteringDirections = 8u;   // 8 × 8 directions over the sphere per texel
-GPU_CONST uint kMultiScatteringSteps = 32u;       // steps along each direction's ray
+GPU_CONST uint kMultiScatteringSize = 32u;            // texels along each axis
+GPU_CONST uint kMultiScatteringDirections = 8u;       // 8 × 8 directions over the sphere per texel
+GPU_CONST uint kMultiScatteringSteps = 32u;           // steps along each direction's ray
 GPU_CONST float kMultiScatteringGroundAlbedo = 0.3f;  // Lambertian ground under the air (second order only)
 
 // One ray of `planet sky` on the GPU (shaders/sky_ray.comp): the sun's transmittance and Ψ_ms
@@ -95,9 +126,9 @@ GPU_CONST uint kSkyRayWorkgroupSize = 64u;
 struct SkyRayPush {
   AtmosphereParams atmosphere;
   vec4 counts;  // x: rays, y: steps of the reference march (sky.comp's samples), z: steps of the tables' march, w: 0
-               // (whole numbers as floats)
+                // (whole numbers as floats)
 };
-GPU_ASSERT_SIZE(SkyRayPush, 112)
+GPU_ASSERT_SIZE(SkyRayPush, 128)
 
 GPU_NAMESPACE_END
 

@@ -87,6 +87,7 @@ Viewer::Viewer(const ViewOptions& viewOptions) : options_(viewOptions) {
   settings_.fovDeg = options.fovDeg;
   settings_.autoExposure = options.autoExposure;
   settings_.exposure = options.exposure;
+  settings_.skyMode = options.skyMode;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));
   settings_.mesh = qualityPreset(settings_.quality).mesh;

@@ -11,6 +11,7 @@
 #include "planet/scene_description.h"
 #include "camera/camera.h"
 #include "camera/camera_path.h"
+#include "render/sky_pass.h"
 #include "render/view_quality.h"
 
 namespace planet::view {
@@ -30,6 +31,7 @@ struct ViewOptions {
   // Eye adaptation (the default), or a fixed exposure.
   bool autoExposure = true;
   double exposure = 10.0;  // SkySettings{}.exposure
+  SkyMode skyMode = SkyMode::Tables;   // planet view --sky
   // A scene of several bodies instead of `planet` (planet view --scene): the camera starts on
   // body `sceneBody` at `camera`, the scene's clock at sceneTimeS, running timeScale times real
   // time; T travels to the next body. travelTo starts the autopilot at once (tests, demos).

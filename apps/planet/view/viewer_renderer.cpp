@@ -23,6 +23,7 @@ RenderSettings ViewerRenderer::renderSettings(const ViewerSettings& settings, Vk
   base.sky.clouds = settings.clouds;
   base.sky.exposure = settings.exposure;
   base.autoExposure = settings.autoExposure;
+  base.sky.mode = settings.skyMode;
   RenderSettings render = viewRenderSettings(base, settings.quality, window.width, window.height);
   render.terrain.mesh = settings.mesh;
   return render;
@@ -74,6 +75,7 @@ void ViewerRenderer::apply(const UiRequests& r, ViewerSettings& settings, VkExte
       SkySettings sky = renderer_->settings().sky;
       sky.clouds = settings.clouds;
       sky.exposure = settings.exposure;
+      sky.mode = settings.skyMode;
       renderer_->setSkySettings(sky);
       renderer_->setAutoExposure(settings.autoExposure);
     }

@@ -368,7 +368,9 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
       a.mieScattering =
           a.mieScattering.x > 0.0 ? a.mieScattering * (mie * 1e-6 / a.mieScattering.x) : glm::dvec3(mie * 1e-6);
     r.rebuild |= editDouble("Mie scale height", a.mieScaleHeightM, 100.0, 20000.0, "%.0f m");
-    r.rebuild |= editDouble("Mie g", a.mieG, 0.0, 0.95, "%.2f");
+    double mieG = a.mieG.y;  // green's; the others move with it (a preset's spread across channels stays)
+    if (editDouble("Mie g", mieG, 0.0, 0.95, "%.2f")) r.rebuild = true;
+    if (mieG != a.mieG.y) a.mieG = glm::clamp(a.mieG + (mieG - a.mieG.y), glm::dvec3(-0.99), glm::dvec3(0.99));
     CloudDescription& cl = s.planet.clouds;
     r.rebuild |= editDouble("cloud cover", cl.coverage, 0.0, 1.0, "%.2f");
     r.rebuild |= editDouble("cloud climate bands", cl.climate, 0.0, 2.0, "%.2f");

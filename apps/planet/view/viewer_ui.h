@@ -33,12 +33,13 @@ struct ViewerSettings {
   // fixed exposure below.
   bool autoExposure = true;
   double exposure = SkySettings{}.exposure;
+  SkyMode skyMode = SkyMode::Tables;
   // The sun is fixed in the planet frame: the point it stands over (subsolar point).
   double sunLatitudeDeg = 0.0;
   double sunLongitudeDeg = 0.0;
   bool sunMoves = false;  // one day per dayLengthS
   double dayLengthS = 600.0;
-  double timeS = 0.0;  // animation phase (clouds, waves)
+  double timeS = 0.0;               // animation phase (clouds, waves)
   double cameraLongitudeDeg = 0.0;  // read by the panel: local solar time is relative to it
   bool animate = true;
 };

@@ -1,0 +1,67 @@
+#version 450
+// The aerial-perspective volume (Hillaire 2020, §5.4), rebuilt every frame before the compose
+// pass: for each of kAerialSize² columns across the screen, the light the air scatters toward
+// the camera (single and multiple scattering) and the transmittance from the camera to the far
+// end of each of the column's kAerialSize slices (sky_aerial.glsl). One invocation marches a
+// whole column, kAerialStepsPerSlice steps per slice (common/atmosphere.glsl, scatteringStep),
+// and stops where the ray meets the ground sphere: slices past it keep the value there.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/sky_params.h"
+
+layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
+
+layout(std430, set = 0, binding = kSkyTableBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
+layout(set = 0, binding = kSkyTableBindingTransmittance) uniform sampler2D transmittanceTable;
+layout(set = 0, binding = kSkyTableBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
+layout(set = 0, binding = kSkyTableBindingAerialLight, rgba16f) uniform writeonly image2DArray aerialLight;
+layout(set = 0, binding = kSkyTableBindingAerialTransmittance, rgba16f) uniform writeonly image2DArray
+    aerialTransmittance;
+
+#define MULTIPLE_SCATTERING(a, h, muS) \
+  textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
+#include "atmosphere_lookup.glsl"
+#include "sky_aerial.glsl"
+
+void main() {
+  uvec2 column = gl_GlobalInvocationID.xy;
+  if (column.x >= kAerialSize || column.y >= kAerialSize) return;
+  vec2 ndc = (vec2(column) + 0.5f) / float(kAerialSize) * 2.0f - 1.0f;
+  vec4 nearPoint = sky.clipToLocal * vec4(ndc, 1.0f, 1.0f);
+  vec3 dir = normalize(nearPoint.xyz / nearPoint.w);
+
+  AtmosphereParams a = sky.atmosphere;
+  float R = a.radii.x;
+  float h = sky.camera.x;
+  float mu = dir.z;
+  float muS = sky.sunLocal.z;
+  float nu = dot(dir, sky.sunLocal.xyz);
+  float hGround = sky.surface.z;
+  vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+  vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
+  bool air = a.radii.w > 0.5f && stretch.y > stretch.x;
+
+  // The march starts where the ray enters the air, its distances counted from there.
+  float tStart = air ? stretch.x : 0.0f;
+  float r = R + h;
+  float h0 = altitudeAlong(R, h, mu, tStart);
+  float mu0 = clamp((r * mu + tStart) / (R + h0), -1.0f, 1.0f);
+  float muS0 = clamp((r * muS + tStart * nu) / (R + h0), -1.0f, 1.0f);
+  float phaseR = rayleighPhase(nu);
+  vec3 phaseM = miePhases(a, nu);
+  vec3 single = vec3(0.0f), total = vec3(0.0f), transmittance = vec3(1.0f);
+  float done = tStart;
+  for (uint k = 0u; k < kAerialSize; ++k) {
+    float target = air ? min(aerialSliceEnd(k, columnStretch), stretch.y) : 0.0f;
+    if (target > done) {
+      float dt = (target - done) / float(kAerialStepsPerSlice);
+      for (uint i = 0u; i < kAerialStepsPerSlice; ++i) {
+        float t = done - tStart + (float(i) + 0.5f) * dt;
+        scatteringStep(a, h0, mu0, muS0, nu, phaseR, phaseM, t, dt, single, total, transmittance);
+      }
+      done = target;
+    }
+    imageStore(aerialLight, ivec3(column, k), vec4(total, 0.0f));
+    imageStore(aerialTransmittance, ivec3(column, k), vec4(transmittance, 0.0f));
+  }
+}

@@ -1,0 +1,46 @@
+// The aerial-perspective volume's slices (Hillaire 2020, §5.4), shared by its build
+// (aerial_perspective.comp) and its readers (sky.comp). The includer declares `sky`
+// (SkyUniforms) and includes atmosphere_lookup.glsl first.
+//
+// From inside the atmosphere the slices sit at the same distances in every column, gathered
+// toward the camera: slice k ends at D · ((k + 1) / N)², D the farthest distance a ray can run
+// inside the air (past the ground's horizon to the top), so that neighbouring columns hold the
+// same distances and blend right across the edges of what the pixels show. From above the top
+// a common range would spend most slices outside the air (at 8,000 km the air along a ray is
+// 100 km of a 6,000 km range), so each column splits its own stretch through the air evenly:
+// from where it enters the top to where it meets the ground sphere, or, for a ray that misses
+// it, to the point where it passes closest to it, which joins the two continuously at the limb.
+#ifndef PLANET_SKY_AERIAL_GLSL
+#define PLANET_SKY_AERIAL_GLSL
+
+bool aerialFromAbove() { return sky.aerial.x > 0.5f; }
+
+// The stretch [x, y] of distances from the camera that a column's slices split (from above).
+vec2 aerialColumnStretch(float R, float h, float mu, float hGround) {
+  vec2 stretch = atmosphereStretch(sky.atmosphere, h, mu, hGround);
+  if (stretch.y <= stretch.x) return vec2(0.0f, -1.0f);
+  vec2 ground = raySphere(R, h, mu, hGround);
+  bool hitsGround = mu < 0.0f && ground.x >= 0.0f;
+  float closest = -(R + h) * mu;  // where a ray going down passes closest to the centre
+  float end = hitsGround ? stretch.y : (mu < 0.0f ? clamp(closest, stretch.x, stretch.y) : stretch.y);
+  return vec2(stretch.x, end);
+}
+
+// The continuous slice coordinate of distance t from the camera: slice k's far end at k, the
+// camera (or the column's start) at −1.
+float aerialSlice(float t, vec2 columnStretch) {
+  float n = float(kAerialSize);
+  if (!aerialFromAbove()) return n * sqrt(max(t, 0.0f) / sky.aerial.y) - 1.0f;
+  float length = columnStretch.y - columnStretch.x;
+  if (length <= 0.0f) return -1.0f;
+  return n * clamp((t - columnStretch.x) / length, 0.0f, 1.0f) - 1.0f;
+}
+
+// The distance from the camera where slice k ends.
+float aerialSliceEnd(uint k, vec2 columnStretch) {
+  float x = float(k + 1u) / float(kAerialSize);
+  if (!aerialFromAbove()) return sky.aerial.y * x * x;
+  return columnStretch.x + (columnStretch.y - columnStretch.x) * x;
+}
+
+#endif
