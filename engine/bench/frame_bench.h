@@ -45,8 +45,6 @@ struct FrameBenchOptions {
   // (the luminance pass runs and is timed); else the fixed exposure.
   bool autoExposure = false;
   double exposure = SkySettings{}.exposure;
-  bool compare = false;               // also run every other BenchMode
-  bool patches = true;                // patch textures (off: vertex normals only, like planet render --no-patches)
   SkyMode skyMode = SkyMode::Tables;  // planet bench --sky
   // The rate of the flight the timed frames sample. Each timed frame follows an untimed lead-in
   // frame 1 / flightFps s of flight earlier, so that it does the work a frame of a real-time
