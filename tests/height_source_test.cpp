@@ -193,11 +193,17 @@ TEST_F(HeightSources, TheVertexShaderDrawsNoWaterAndTheSameLand) {
   std::printf("pixels changed by the water: %zu of %zu\n", sea, pixels);
   EXPECT_GT(sea, pixels / 10);
   EXPECT_LT(sea, pixels * 9 / 10);
-  // The vertex shader's picture is the dry one (measured on lavapipe: identical), so it differs
-  // from the compute design's exactly where the sea is.
+  // The vertex shader's picture is the dry one, so it differs from the compute design's where
+  // the sea is. Measured on lavapipe: identical before the aerial-perspective volume, one pixel
+  // of 14,400 since (the volume is read at the pixel's depth, and the two sources' positions
+  // differ in the last bits); a few pixels are allowed, a different sea is not.
   EXPECT_GE(psnrRgb(vertex.image, dry.image), 40.0);
-  std::printf("vertex shader vs dry: %zu pixels differ\n", differingPixels(vertex.image, dry.image));
-  EXPECT_EQ(differingPixels(vertex.image, compute.image), sea);
+  const size_t dryDiffers = differingPixels(vertex.image, dry.image);
+  std::printf("vertex shader vs dry: %zu pixels differ\n", dryDiffers);
+  EXPECT_LE(dryDiffers, pixels / 1000);
+  const size_t wetDiffers = differingPixels(vertex.image, compute.image);
+  EXPECT_LE(wetDiffers, sea + dryDiffers);
+  EXPECT_GE(wetDiffers + dryDiffers, sea);
   EXPECT_GE(psnrRgb(cpu.image, compute.image), 40.0);
   if (HasFailure()) {
     saveOnFailure(compute.image, "coast_compute.png");

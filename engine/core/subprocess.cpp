@@ -46,6 +46,18 @@ struct IgnoreSigpipe {
   ~IgnoreSigpipe() { ::sigaction(SIGPIPE, &previous, nullptr); }
 };
 
+// Starts argv[0] (looked up in PATH) with argv and the file actions, which it then destroys.
+// Returns the child's pid, or -1 when it could not be started.
+pid_t spawn(const std::vector<std::string>& argv, posix_spawn_file_actions_t& actions) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  const int spawnError = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return spawnError == 0 ? pid : -1;
+}
+
 }  // namespace
 
 ProcessResult runProcess(const std::vector<std::string>& argv, std::string_view input) {
@@ -56,13 +68,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, std::string_view 
   posix_spawn_file_actions_adddup2(&actions, in.fd[0], STDIN_FILENO);
   posix_spawn_file_actions_adddup2(&actions, out.fd[1], STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, err.fd[1], STDERR_FILENO);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = -1;
-  const int spawnError = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawnError != 0) return result;
+  const pid_t pid = spawn(argv, actions);
+  if (pid < 0) return result;
   result.started = true;
   IgnoreSigpipe ignoreSigpipe;
   in.closeEnd(0);
@@ -115,13 +122,8 @@ FedProcess::FedProcess(const std::vector<std::string>& argv) {
   posix_spawn_file_actions_adddup2(&actions, in.fd[0], STDIN_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, errorFile_, STDERR_FILENO);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = -1;
-  const int spawnError = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawnError != 0) return;
+  const pid_t pid = spawn(argv, actions);
+  if (pid < 0) return;
   started_ = true;
   pid_ = pid;
   input_ = in.fd[1];

@@ -79,8 +79,13 @@ vec4 terrainSurfaceAttributes(vec3 offsetPlanet, real radius, vec3 nadir, vec3 r
   // Regional noise: three octaves from 64 band wavelengths (2,560 km on Earth down to 640 km,
   // finer than any vertex spacing), so that the materials vary by region (wet and dry, warm and
   // cold, dark and bright) and not only by latitude and height.
-  if (regionalWeight > real(0.0f))
-    noise = noise + regionalWeight * colourNoise(pointM, bandFrequency * real(0.015625f), 3u, real(1.0f), 0x2f6b8a13u);
+  // Precise: the compute and the vertex-shader sources must shade alike (no fused multiply-add
+  // in one stage and not in the other).
+  if (regionalWeight > real(0.0f)) {
+    PRECISE real regional =
+        regionalWeight * colourNoise(pointM, bandFrequency * real(0.015625f), 3u, real(1.0f), 0x2f6b8a13u);
+    noise = noise + regional;
+  }
   vec2 face = patchFaceOffset(offsetPlanet / radius - refMinusNadir, faceNormal, faceAxisA, faceAxisB);
   return vec4(face.x, face.y, noise, normalize(directionPlanet).z);
 }
