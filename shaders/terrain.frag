@@ -18,6 +18,12 @@
 
 #include "common/rings.glsl"
 
+// The planet's colour scheme (ColorScheme) and whether it has polar caps, as specialization
+// constants (TerrainPass::createDrawPipeline): lavapipe runs every side of a branch, so each
+// scheme's code would cost every planet; with constants the compiler drops the others.
+layout(constant_id = 0) const uint kSpecScheme = 0u;
+layout(constant_id = 1) const uint kSpecPolarCaps = 0u;
+
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
 layout(location = 2) in vec4 inAttributes;
@@ -50,7 +56,7 @@ vec3 bandColor(float altitude, float sinLatitude) {
 // and it depends on nothing of the patch levels, so it is continuous across them.
 vec3 groundAlbedo(float altitude, float slope, float sinLatitude, float jitter, float pixelM, vec3 offsetPlanet,
                   float footprintM, inout vec3 normal) {
-  uint scheme = uint(frame.shading.y);
+  uint scheme = kSpecScheme;
   GroundDetail d = groundDetail(offsetPlanet, footprintM);
   // The material noise: the band noise, the coarse octaves, and a little of the detail's second
   // field, so edges are ragged down to the pixel.
@@ -112,9 +118,9 @@ void main() {
     }
   } else {
     float slope = 1.0f - max(dot(normal, up), 0.0f);
-    uint scheme = uint(frame.shading.y);
+    uint scheme = kSpecScheme;
     bool seedScheme = scheme == kSchemeAltitude || scheme >= kSchemeAltitudePerturbed;
-    bool caps = frame.scheme.noise.y > 0.5f;
+    bool caps = kSpecPolarCaps != 0u;
     // Seed 000's colour noise, per pixel on the sphere (float directions are good to ~1 m on
     // Earth, far below its finest octave's few km).
     float colorNoise = 0.0f;

@@ -225,6 +225,10 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
   desc.fragmentSpirv = kSpv_terrain_frag;
+  // The colour scheme and the polar caps as specialization constants (terrain.frag): lavapipe
+  // runs every side of a branch, and the seed schemes' per-pixel noise would cost every scheme.
+  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u};
+  desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader
     desc.vertexSpirv = kSpv_terrain_noise_vert;

@@ -1,5 +1,7 @@
 #include "vk/graphics_pipeline.h"
 
+#include <vector>
+
 #include "core/error.h"
 #include "vk/context.h"
 #include "vk/owned.h"
@@ -22,6 +24,12 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.get();
   stages[1].pName = "main";
+  std::vector<VkSpecializationMapEntry> entries(desc.fragmentSpecialization.size());
+  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)};
+  const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
+                                            desc.fragmentSpecialization.size_bytes(),
+                                            desc.fragmentSpecialization.data()};
+  if (!entries.empty()) stages[1].pSpecializationInfo = &specialization;
 
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};

@@ -15,6 +15,8 @@ class Context;
 struct GraphicsPipelineDesc {
   std::span<const uint32_t> vertexSpirv;
   std::span<const uint32_t> fragmentSpirv;
+  // The fragment shader's specialization constants: value i goes to constant_id i.
+  std::span<const uint32_t> fragmentSpecialization;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
