@@ -18,15 +18,8 @@
 #ifndef PLANET_COMMON_NOISE_GENERATORS_GLSL
 #define PLANET_COMMON_NOISE_GENERATORS_GLSL
 
-real generatorDot(vec3 a, vec3 b) {
-  PRECISE real d = a.x * b.x + a.y * b.y + a.z * b.z;
-  return d;
-}
-
-vec3 generatorCross(vec3 a, vec3 b) {
-  PRECISE vec3 c = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-  return c;
-}
+// Vector algebra: dot3 and cross3 of noise_erosion.glsl (included before this file by
+// noise_gradient.glsl), written out so that both compilers round alike.
 
 // The walk's octave-0 point (plain: the wrapped input; rebased: the anchor's integer part plus
 // remainder plus offset, see erosionUp) and, in chainScale, d(point)/d(walk input): 1 plain, the
@@ -100,7 +93,7 @@ vec4 faultsNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   uint count = params.octaves == 0u ? 0u : params.elements;
   PRECISE real width = max(real(params.offset), real(0.0f));
   PRECISE real inverseWidth = width > real(0.0f) ? real(1.0f) / width : real(0.0f);
-  PRECISE real length2 = generatorDot(p, p);
+  PRECISE real length2 = dot3(p, p);
   PRECISE real inverseLength = length2 > real(0.0f) ? real(1.0f) / sqrt(length2) : real(0.0f);
   PRECISE vec3 up = p * inverseLength;
   PRECISE real sum = real(0.0f);
@@ -108,7 +101,7 @@ vec4 faultsNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   for (uint i = 0u; i < count; ++i) {
     vec4 plane = faultPlane(i, params.seedMix);
     vec3 normal = vec3(plane.x, plane.y, plane.z);
-    PRECISE real d = generatorDot(normal, up);
+    PRECISE real d = dot3(normal, up);
     if (width > real(0.0f)) {
       PRECISE real t = d * inverseWidth;
       if (t >= real(1.0f)) {
@@ -235,13 +228,13 @@ vec4 mpdNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   vec3 c = mpdBaseVertex(solid, ids.z);
   // Barycentric coordinates of p's central projection onto the face's plane: p = la·a + lb·b +
   // lc·c scaled, la ∝ p·(b × c) (the common determinant cancels in the ratio).
-  vec3 da = generatorCross(b, c);
-  vec3 db = generatorCross(c, a);
-  vec3 dc = generatorCross(a, b);
+  vec3 da = cross3(b, c);
+  vec3 db = cross3(c, a);
+  vec3 dc = cross3(a, b);
   // (Half the faces are listed clockwise: then all three are negative, and so is their sum.)
-  PRECISE real la = generatorDot(p, da);
-  PRECISE real lb = generatorDot(p, db);
-  PRECISE real lc = generatorDot(p, dc);
+  PRECISE real la = dot3(p, da);
+  PRECISE real lb = dot3(p, db);
+  PRECISE real lc = dot3(p, dc);
   PRECISE real total = la + lb + lc;
   if (!(abs(total) > real(1e-30f))) total = real(1e-30f);  // p = 0 only
   // Two weights are carried, the third is 1 minus them: carried separately, their sum's rounding
