@@ -12,4 +12,8 @@ struct MeshVertex {
 };
 layout(std430, set = 0, binding = kRenderBindingMesh) readonly buffer Mesh { MeshVertex mesh[]; };
 
+// The sea's vertices are pulled toward the camera by this fraction of their distance, a few
+// float ulps of reversed-Z depth, so that ground just below the surface never shows through it.
+const float kWaterTowardCamera = 2.0e-6f;
+
 #endif

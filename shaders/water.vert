@@ -16,16 +16,12 @@ layout(location = 2) out vec4 outAttributes;  // face Δa, Δb, band noise, sin(
 layout(location = 3) out float outHeight;     // terrain height at the vertex (m)
 layout(location = 4) out vec3 outToCamera;    // local frame, metres
 
-// Depth: the sea is pulled toward the camera by this fraction of its distance, a few float
-// ulps of reversed-Z depth, so that ground just below the surface never shows through it.
-const float kTowardCamera = 2.0e-6f;
-
 void main() {
   uint index = uint(gl_VertexIndex);
   vec4 s = surface[index];
   vec3 up = mesh[index].direction.xyz;
   vec3 position = s.xyz + frame.planet.x * up - vec3(0.0f, 0.0f, frame.camera.x);
-  gl_Position = frame.viewProjection * vec4(position * (1.0f - kTowardCamera), 1.0f);
+  gl_Position = frame.viewProjection * vec4(position * (1.0f - kWaterTowardCamera), 1.0f);
   outNormal = normals[index].xyz;
   outUp = up;
   outAttributes = attributes[index];

@@ -23,6 +23,7 @@
 #include "spv/terrain.frag.h"
 #include "spv/terrain.vert.h"
 #include "spv/terrain_noise.vert.h"
+#include "spv/terrain_noise_no_craters.vert.h"
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_heights_no_craters.comp.h"
 #include "vk/commands.h"
@@ -213,13 +214,34 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                           VK_SHADER_STAGE_VERTEX_BIT)};
   (settings.wireframe ? wireframePipeline_ : fillPipeline_) = {context, createDrawPipeline(settings.wireframe)};
-  // The sea reads the vertex buffers the compute (or CPU) heights fill; seed 002's design
-  // (heights in the vertex shader, a benchmark comparison) has none, so it draws no sea.
-  if (planet.hasOcean && settings.heightSource != HeightSource::VertexShader)
-    water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat);
+  // The sea reads the vertex buffers the compute (or CPU) heights fill; in seed 002's design
+  // (heights in the vertex shader) its vertices evaluate the noise again.
+  if (planet.hasOcean) {
+    if (noiseDrawLayout_.get()) {
+      const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
+      water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat,
+                                           noiseVertexSpirv(), specialization);
+    } else {
+      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat);
+    }
+  }
 }
 
 TerrainPass::~TerrainPass() = default;
+
+std::span<const uint32_t> TerrainPass::noiseVertexSpirv() const {
+  // As the height pass's variants: without the crater and erosion code unless a layer needs it.
+  return needsFullNoiseShaders(planet_) ? std::span<const uint32_t>(kSpv_terrain_noise_vert)
+                                        : kSpv_terrain_noise_no_craters_vert;
+}
+
+std::vector<uint32_t> TerrainPass::noiseVertexSpecialization(bool water) const {
+  // The layers' constants as the height pass gets them, then kNoiseVertexWater (terrain_noise.vert).
+  std::vector<uint32_t> values = layerSpecialization(planet_);
+  values.resize(gpu::kTerrainSpecCount, 0u);
+  values.push_back(water ? 1u : 0u);
+  return values;
+}
 
 VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   vk::GraphicsPipelineDesc desc;
@@ -230,8 +252,11 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
+  std::vector<uint32_t> vertexSpecialization;
   if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader
-    desc.vertexSpirv = kSpv_terrain_noise_vert;
+    vertexSpecialization = noiseVertexSpecialization(false);
+    desc.vertexSpirv = noiseVertexSpirv();
+    desc.vertexSpecialization = vertexSpecialization;
     desc.layout = noiseDrawLayout_.get();
   }
   desc.colorFormat = colorFormat_;
@@ -490,9 +515,10 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   frame_.cpuHeightsMs = 0.0;
   const uint32_t n = settings_.mesh.numPhi;
   if (settings_.heightSource == HeightSource::VertexShader) {
-    // The draw evaluates every vertex it draws, every frame: nothing to compute ahead.
+    // The draws evaluate every vertex they draw, every frame, the sea's again: nothing to
+    // compute ahead.
     frame_.heightsComputed = true;
-    frame_.verticesEvaluated = (frame_.rings.lastRing - frame_.rings.firstRing + 1) * n + 1;
+    frame_.verticesEvaluated = ((frame_.rings.lastRing - frame_.rings.firstRing + 1) * n + 1) * (frame_.waterDrawn ? 2 : 1);
   } else if (frame_.heightsComputed) {
     if (timer) timer->begin(cmd, "heights");
     // The previous frame's vertex shader read these buffers; the rewrite must wait for it.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -85,7 +86,7 @@ struct TerrainFrameInfo {
   double metresPerVertexAtNadir = 0.0;
   double poleCapRadiusM = 0.0;
   uint64_t triangles = 0;
-  uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped; VertexShader: drawn)
+  uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped; VertexShader: drawn, twice with the sea)
   double cpuHeightsMs = 0.0;       // HeightSource::Cpu: wall time of the CPU evaluation this frame
   uint32_t patchLevelsRebuilt = 0;  // levels the patch textures wrote to this frame (whole or new strips)
   uint64_t patchTexelsWritten = 0;  // texels they wrote
@@ -210,6 +211,10 @@ class TerrainPass {
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
   VkPipeline createDrawPipeline(bool wireframe);
+  // HeightSource::VertexShader: terrain_noise.vert's variant for this planet, and its
+  // specialization constants for the ground (water false) or the sea.
+  std::span<const uint32_t> noiseVertexSpirv() const;
+  std::vector<uint32_t> noiseVertexSpecialization(bool water) const;
   // The rings, tables (uploaded) and budget figures for `orientation`, with the camera
   // heightAboveGroundM above the ground.
   Lod chooseLod(const TerrainView& view, const ClipmapFrame& orientation, double heightAboveGroundM);

@@ -11,10 +11,12 @@
 
 namespace planet {
 
-WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat) {
+WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
+                     std::span<const uint32_t> vertexSpirv, std::span<const uint32_t> vertexSpecialization) {
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;
-  desc.vertexSpirv = kSpv_water_vert;
+  desc.vertexSpirv = vertexSpirv.empty() ? std::span<const uint32_t>(kSpv_water_vert) : vertexSpirv;
+  desc.vertexSpecialization = vertexSpecialization;
   desc.fragmentSpirv = kSpv_water_frag;
   desc.colorFormat = colorFormat;
   desc.depthFormat = depthFormat;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -31,8 +32,10 @@ class WaterPass {
   static constexpr uint32_t kTimingScopes = 1;
 
   // A pipeline over the terrain pass's `layout`, for a dynamic-rendering scope of colorFormat and
-  // depthFormat.
-  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat);
+  // depthFormat. The vertices come from water.vert, or from `vertexSpirv` with its
+  // specialization constants (the vertex-shader height source: terrain_noise.vert).
+  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
+            std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> vertexSpecialization = {});
 
   // Records the draw of the ground's index ranges (the bands, then the fan that closes the mesh at
   // the pole) with the terrain's descriptor set and index buffer still bound.

@@ -1,5 +1,6 @@
 #include "vk/graphics_pipeline.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/error.h"
@@ -24,12 +25,18 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.get();
   stages[1].pName = "main";
-  std::vector<VkSpecializationMapEntry> entries(desc.fragmentSpecialization.size());
+  // Value i of a stage's list is its constant_id i: one map serves both stages.
+  std::vector<VkSpecializationMapEntry> entries(
+      std::max(desc.vertexSpecialization.size(), desc.fragmentSpecialization.size()));
   for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)};
-  const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
-                                            desc.fragmentSpecialization.size_bytes(),
-                                            desc.fragmentSpecialization.data()};
-  if (!entries.empty()) stages[1].pSpecializationInfo = &specialization;
+  const VkSpecializationInfo vertexSpecialization{uint32_t(desc.vertexSpecialization.size()), entries.data(),
+                                                  desc.vertexSpecialization.size_bytes(),
+                                                  desc.vertexSpecialization.data()};
+  const VkSpecializationInfo fragmentSpecialization{uint32_t(desc.fragmentSpecialization.size()), entries.data(),
+                                                    desc.fragmentSpecialization.size_bytes(),
+                                                    desc.fragmentSpecialization.data()};
+  if (!desc.vertexSpecialization.empty()) stages[0].pSpecializationInfo = &vertexSpecialization;
+  if (!desc.fragmentSpecialization.empty()) stages[1].pSpecializationInfo = &fragmentSpecialization;
 
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};

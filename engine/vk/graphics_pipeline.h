@@ -15,7 +15,8 @@ class Context;
 struct GraphicsPipelineDesc {
   std::span<const uint32_t> vertexSpirv;
   std::span<const uint32_t> fragmentSpirv;
-  // The fragment shader's specialization constants: value i goes to constant_id i.
+  // Each stage's specialization constants: value i goes to constant_id i of that stage.
+  std::span<const uint32_t> vertexSpecialization;
   std::span<const uint32_t> fragmentSpecialization;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
