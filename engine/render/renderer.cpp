@@ -398,16 +398,54 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-  const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  const VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-  beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
-  // Stars first, at infinity; everything drawn later covers them.
-  if (stars_) stars_->recordDraw(cmd, starsToClip_, float(settings_.height), timer);
-  for (Body& body : bodies_) body.terrain->recordDraw(cmd, timer);
+  // The stars, the ground, the sea and the rings each in a render pass of their own over the
+  // same targets, so that each has a timing scope of its own. Lavapipe shades a draw's vertices
+  // when it executes the draw command but its fragments when the render pass's tiles are
+  // flushed, and writes a timestamp when its rasterizer reaches it in the tiles of the pass it
+  // was recorded in; so one pass's scope ends, and the next one's begins, at the end of that
+  // pass (GpuTimer::next), and each scope holds its draws' vertex and fragment work. The barrier
+  // between two passes (the later one loads what the earlier one stored) flushes the tiles. On a
+  // GPU the few extra passes over a frame's targets, and their barriers, are cheap.
+  std::vector<std::pair<const char*, std::function<void()>>> sections;
+  if (stars_)
+    sections.emplace_back("stars", [&] { stars_->recordDraw(cmd, starsToClip_, float(settings_.height), nullptr); });
+  sections.emplace_back("terrain", [&] {
+    for (Body& body : bodies_) body.terrain->recordDraw(cmd, nullptr);
+  });
+  if (std::any_of(bodies_.begin(), bodies_.end(), [](const Body& body) { return body.terrain->waterDrawn(); }))
+    sections.emplace_back("water", [&] {
+      for (Body& body : bodies_) body.terrain->recordWaterDraw(cmd, nullptr);
+    });
   // Rings last: they blend over whatever the depth test lets them cover and write no depth.
-  for (Body& body : bodies_)
-    if (body.rings) body.rings->recordDraw(cmd, timer);
-  vkCmdEndRendering(cmd);
+  if (std::any_of(bodies_.begin(), bodies_.end(), [](const Body& body) { return bool(body.rings); }))
+    sections.emplace_back("rings", [&] {
+      for (Body& body : bodies_)
+        if (body.rings) body.rings->recordDraw(cmd, nullptr);
+    });
+  if (timer) timer->begin(cmd, sections.front().first);
+  for (size_t k = 0; k < sections.size(); ++k) {
+    VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    if (k > 0) hdrAttachment.loadOp = depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
+    sections[k].second();
+    if (timer) {
+      if (k + 1 < sections.size())
+        timer->next(cmd, sections[k + 1].first);
+      else
+        timer->end(cmd);
+    }
+    vkCmdEndRendering(cmd);
+    if (k + 1 < sections.size())
+      vk::memoryBarrier(cmd,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  }
   // The compose pass reads and writes the HDR colour and samples the depth.
   vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

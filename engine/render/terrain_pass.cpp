@@ -561,10 +561,7 @@ void TerrainPass::invalidatePatches() {
   if (patches_) patches_->invalidate();
 }
 
-void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
-  if (timer) timer->begin(cmd, "terrain");
-  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipeline_;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
+void TerrainPass::bindDrawState(VkCommandBuffer cmd) const {
   const VkPipelineLayout drawLayout = noiseDrawLayout_.get() ? noiseDrawLayout_.get() : layout_.get();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout, 0, 1, &sets_[slot_], 0, nullptr);
   if (noiseDrawLayout_.get()) {
@@ -572,15 +569,33 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdPushConstants(cmd, drawLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
   }
   vkCmdBindIndexBuffer(cmd, indices_->buffer, 0, VK_INDEX_TYPE_UINT32);
-  // Bands firstRing..lastRing−1, then the fan that closes ring lastRing at the pole.
-  const IndexRange bands = mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing);
-  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
+}
+
+IndexRange TerrainPass::drawnBands() const { return mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing); }
+
+IndexRange TerrainPass::drawnFan() const {
   const uint32_t n = settings_.mesh.numPhi;
-  const IndexRange fan{mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 3 * n};
+  return {mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 3 * n};
+}
+
+void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  if (timer) timer->begin(cmd, "terrain");
+  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipeline_;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
+  bindDrawState(cmd);
+  const IndexRange bands = drawnBands();
+  const IndexRange fan = drawnFan();
+  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
   vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
   if (timer) timer->end(cmd);
-  // The sea over it, with the set and index buffer bound above.
-  if (frame_.waterDrawn) water_->recordDraw(cmd, bands, fan, timer);
+}
+
+void TerrainPass::recordWaterDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  if (!frame_.waterDrawn) return;
+  // The sea over the ground, over the same ranges; the water pipeline shares the ground's layout.
+  water_->bindPipeline(cmd);
+  bindDrawState(cmd);
+  water_->recordDraw(cmd, drawnBands(), drawnFan(), timer);
 }
 
 }  // namespace planet

@@ -147,9 +147,12 @@ class TerrainPass {
   // (skipped when nothing that feeds them changed since the last computed frame), then the
   // patch levels that moved. Call after prepare(), submitting in the order of the calls.
   void recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer);
-  // The draw of the last prepared frame, inside a dynamic-rendering scope with the target's
-  // formats: the ground, then the water pass over it (planets with an ocean).
+  // The draws of the last prepared frame, inside a dynamic-rendering scope with the target's
+  // formats: the ground, then (in the same or a later scope over the same targets) the water
+  // pass over it, for planets with an ocean whose sea is drawn this frame (waterDrawn()).
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  void recordWaterDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  bool waterDrawn() const { return frame_.waterDrawn; }
 
   // Debug (the viewer): while frozen, prepare() keeps the orientation, rings, octave tables and
   // patch layout of the last frame prepared before freezing, and that mesh is drawn from wherever
@@ -211,6 +214,12 @@ class TerrainPass {
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
   VkPipeline createDrawPipeline(bool wireframe);
+  // Binds what both draws read (descriptor set, index buffer, the vertex-shader source's push
+  // constants) with `layout`'s pipeline already bound.
+  void bindDrawState(VkCommandBuffer cmd) const;
+  // The bands of the drawn ring range, and the fan that closes ring lastRing at the pole.
+  IndexRange drawnBands() const;
+  IndexRange drawnFan() const;
   // HeightSource::VertexShader: terrain_noise.vert's variant for this planet, and its
   // specialization constants for the ground (water false) or the sea.
   std::span<const uint32_t> noiseVertexSpirv() const;

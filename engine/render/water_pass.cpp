@@ -29,10 +29,14 @@ WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat col
 
 void WaterPass::recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const IndexRange& fan, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "water");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  bindPipeline(cmd);
   if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
   vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
   if (timer) timer->end(cmd);
+}
+
+void WaterPass::bindPipeline(VkCommandBuffer cmd) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
 }
 
 double coxMunkSlopeVariance(double windMps) { return 0.003 + 0.00512 * windMps; }

@@ -43,6 +43,16 @@ void GpuTimer::end(VkCommandBuffer cmd) {
   open_ = UINT32_MAX;
 }
 
+void GpuTimer::next(VkCommandBuffer cmd, const std::string& name) {
+  if (open_ == UINT32_MAX) throw Error("GPU timer next('" + name + "') without begin()");
+  end(cmd);
+  if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
+  open_ = uint32_t(names_.size());
+  names_.push_back(name);
+  // Bottom of pipe, as the end just written: the next scope starts when this one's work is done.
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_.get(), open_ * 2);
+}
+
 std::vector<GpuTiming> GpuTimer::results(Context& context) const {
   std::vector<GpuTiming> timings;
   if (names_.empty()) return timings;

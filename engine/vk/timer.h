@@ -31,6 +31,12 @@ class GpuTimer {
   void reset(VkCommandBuffer cmd);
   void begin(VkCommandBuffer cmd, const std::string& name);
   void end(VkCommandBuffer cmd);
+  // Ends the open scope and begins `name` where it ended (both after the open scope's work), for
+  // passes that follow one another. On lavapipe, which writes a timestamp when its rasterizer
+  // reaches it in the render pass it was recorded in, the switch belongs at the end of the
+  // earlier render pass: written after the next pass began, it would wait for that pass's vertex
+  // work, which lavapipe does when the draws are recorded.
+  void next(VkCommandBuffer cmd, const std::string& name);
 
   // Durations of the scopes recorded since reset(), in recording order. Call only after the
   // command buffer's fence has signalled.
