@@ -1,6 +1,7 @@
 #version 450
 // Heights and normals of the clipmap vertices this frame (issue 3, "Heights by compute"): for
-// every vertex of the drawn ring range (plus one ring on each side, plus the pole) it evaluates
+// every vertex the culled mesh draws (issue 12: the cells of the drawn rings that the view
+// frustum can show, clipmap_culling.h, and the pole) it evaluates
 // the planet's noise stack through the rebased octave tables, limited to the octaves its ring's
 // spacing can show (RingBudget), and stores the vertex's position as an offset from the anchor
 // in the local frame, and its normal from the stack's analytic gradient (issue 19: one
@@ -21,15 +22,18 @@ layout(std430, set = 0, binding = kRenderBindingSurface) writeonly buffer Surfac
 layout(std430, set = 0, binding = kRenderBindingNormals) writeonly buffer Normals { vec4 normals[]; };
 layout(std430, set = 0, binding = kRenderBindingAttributes) writeonly buffer Attributes { vec4 attributes[]; };
 
+// The vertices to evaluate, as runs of at most a workgroup (TerrainPass::writeCulledMesh): the
+// culled mesh's, ring by ring, the pole last.
+layout(std430, set = 0, binding = kRenderBindingChunks) readonly buffer Chunks { uvec2 chunks[]; };
+
 void main() {
-  uint invocation = gl_GlobalInvocationID.x;
   // No early return: lavapipe turns loads with uniform addresses (layer parameters, octave
-  // tables) into one scalar load only outside control flow. Invocations past the pole redo the
-  // pole and store nothing.
-  bool inRange = invocation <= push.vertexCount;
-  // The last invocation handles the pole (vertex ringCount · numPhi).
-  uint pole = push.ringCount * push.numPhi;
-  uint index = invocation >= push.vertexCount ? pole : push.firstVertex + invocation;
+  // tables) into one scalar load only outside control flow. Invocations past their chunk's end
+  // redo its last vertex and store nothing.
+  uvec2 chunk = chunks[gl_WorkGroupID.x];
+  uint local = gl_LocalInvocationID.x;
+  bool inRange = local < chunk.y;
+  uint index = chunk.x + min(local, chunk.y - 1u);
   MeshVertex v = mesh[index];
   vec3 offsetLocal = surfaceOffsetLocal(v);
   vec3 offsetPlanet = mat3(frame.localToPlanet) * offsetLocal;

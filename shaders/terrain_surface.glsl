@@ -48,7 +48,8 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
       vec4 level = frame.patchLevels[j];
       vec2 uv = (face + level.zw) * level.y;
       float edge = min(min(uv.x, 1.0f - uv.x), min(uv.y, 1.0f - uv.y));
-      float weight = clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
+      // A level whose build waits for a later frame has layer −1 (PatchTextures::plan).
+      float weight = level.x < 0.0f ? 0.0f : clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
       if (j == first) weight *= 1.0f - fraction;
       if (weight <= 0.0f) continue;
       // Toroidal storage: the level's texel (0, 0) sits at its wrap offset; the sampler repeats.

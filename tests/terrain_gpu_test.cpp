@@ -108,6 +108,7 @@ TEST_F(TerrainGpu, SpecializedVertexHeightsMatchTheCpuForEveryTypeAndHash) {
     settings.terrain.mesh = ClipmapParams{30, 8, 64};
     settings.terrain.patches = false;
     settings.terrain.heightSource = source;
+    settings.terrain.frustumCulling = false;  // every vertex of the drawn rings is read back
     Renderer renderer(context(), planet, settings);
     renderer.render({12.0, -48.0, 2.0e4, 0.0, -30.0}, {});
     const size_t count = renderer.terrain().mesh().vertexCount();

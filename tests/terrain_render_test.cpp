@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -63,7 +64,9 @@ double drawnHeight(const TerrainPass& terrain, const std::vector<glm::vec4>& sur
 
 TEST_F(TerrainRender, VertexHeightsMatchTheDoubleReferenceAtTheirOctaveBudget) {
   const PlanetDescription planet = resolvePreset("earth");
-  Renderer renderer(context(), planet, smallSettings(false));
+  RenderSettings settings = smallSettings(false);
+  settings.terrain.frustumCulling = false;  // vertices all round the camera are read back
+  Renderer renderer(context(), planet, settings);
   RenderResult result = renderer.render({kLat, kLon, 50.0, 30.0, -20.0}, {});
   TerrainPass& terrain = renderer.terrain();
   const std::vector<glm::vec4> surface = readSurface(context(), terrain);
@@ -99,6 +102,7 @@ TEST_F(TerrainRender, DrawnSurfaceDoesNotSwimWhenTheCameraMoves) {
   auto measure = [&](bool limitOctaves, double& worstChange, double& spacingAtPoints) {
     RenderSettings settings = smallSettings(false);
     settings.terrain.limitOctaves = limitOctaves;
+    settings.terrain.frustumCulling = false;  // the points lie all round the camera
     Renderer renderer(context(), planet, settings);
     TerrainPass& terrain = renderer.terrain();
     // 9.7 m above the ground, which may lie below the radius sphere (a request of 0 m would not be clamped).
@@ -153,12 +157,55 @@ TEST_F(TerrainRender, HeightsAreNotRecomputedWhenNothingMoved) {
   EXPECT_EQ(again.terrain.verticesEvaluated, 0u);
   EXPECT_EQ(again.terrain.patchLevelsRebuilt, 0u);
   EXPECT_EQ(again.image.pixels, first.image.pixels);
-  // Turning the head moves nothing on the ground either.
-  RenderResult turned = renderer.render({-20.0, 40.0, 3000.0, 45.0, -30.0}, {90.0, 20.0});
-  EXPECT_FALSE(turned.terrain.heightsComputed);
+  // Turning the head brings other cells of the mesh into view (frustum culling): their heights
+  // are computed, and the picture is what a renderer that never looked elsewhere draws.
+  RenderResult turned = renderer.render({-20.0, 40.0, 3000.0, 135.0, -30.0}, {90.0, 20.0});
+  EXPECT_TRUE(turned.terrain.heightsComputed);
   EXPECT_NE(turned.image.pixels, first.image.pixels);
+  {
+    Renderer fresh(context(), planet, smallSettings(true));
+    EXPECT_EQ(fresh.render({-20.0, 40.0, 3000.0, 135.0, -30.0}, {90.0, 20.0}).image.pixels, turned.image.pixels);
+  }
+  RenderResult back = renderer.render({-20.0, 40.0, 3000.0, 0.0, -30.0}, {90.0, 20.0});
+  EXPECT_EQ(back.image.pixels, first.image.pixels);
   RenderResult moved = renderer.render({-20.0, 40.001, 3000.0, 0.0, -30.0}, {90.0, 20.0});
   EXPECT_TRUE(moved.terrain.heightsComputed);
+}
+
+// Frustum culling (issue 12, point 5; clipmap_culling.h) drops the cells of the mesh no pixel
+// shows: the same picture as the whole rings, with a fraction of the triangles and of the
+// vertices evaluated when the camera looks toward the horizon or down from a height.
+TEST_F(TerrainRender, FrustumCullingDrawsTheSamePictureWithFewerTriangles) {
+  const PlanetDescription planet = resolvePreset("earth");
+  struct Case {
+    CameraPose camera;
+    double maxTriangleShare;
+  };
+  const Case cases[] = {{{kLat, kLon, 2500.0, 60.0, -8.0}, 0.5},  // toward the horizon
+                        {{kLat, kLon, 4.0e5, 0.0, -90.0}, 0.8},   // down from 400 km
+                        {{kLat, kLon, 2.0e7, 0.0, -90.0}, 1.0}};  // the whole disc
+  for (const Case& c : cases) {
+    SCOPED_TRACE("altitude " + std::to_string(c.camera.altitudeM));
+    RenderSettings whole = smallSettings(true);
+    whole.terrain.frustumCulling = false;
+    Renderer culledRenderer(context(), planet, smallSettings(true));
+    Renderer wholeRenderer(context(), planet, whole);
+    const RenderResult culled = culledRenderer.render(c.camera, {});
+    const RenderResult all = wholeRenderer.render(c.camera, {});
+    const double share = double(culled.terrain.triangles) / double(all.terrain.triangles);
+    std::printf("altitude %.0f m: %llu of %llu triangles (%.0f %%), %u of %u vertices evaluated\n",
+                c.camera.altitudeM, (unsigned long long)culled.terrain.triangles,
+                (unsigned long long)all.terrain.triangles, 100.0 * share, culled.terrain.verticesEvaluated,
+                all.terrain.verticesEvaluated);
+    EXPECT_LE(share, c.maxTriangleShare);
+    EXPECT_LE(culled.terrain.verticesEvaluated, all.terrain.verticesEvaluated);
+    EXPECT_EQ(all.terrain.cellsKept, all.terrain.cellsTotal);
+    EXPECT_EQ(culled.image.pixels, all.image.pixels);
+    if (culled.image.pixels != all.image.pixels) {
+      writePng((std::filesystem::path(testOutputDir()) / "cull_culled.png").string(), culled.image);
+      writePng((std::filesystem::path(testOutputDir()) / "cull_whole.png").string(), all.image);
+    }
+  }
 }
 
 // Fraction of pixels brighter than black on a circle of radius r pixels about the centre.
@@ -274,6 +321,45 @@ TEST_F(TerrainRender, PatchLevelsMovedStripByStripDrawWhatAWholeBuildDraws) {
   const double freshPsnr = psnrRgb(strips, fresh.render(pose, {}).image);
   std::printf("[ measured ] after the flight vs a renderer started there: PSNR %.1f dB\n", freshPsnr);
   EXPECT_GE(freshPsnr, 40.0);
+}
+
+// With a budget of patch texels per frame (the viewer's and the benchmark's, issue 12 point 5)
+// the levels a jump makes stale are built over several frames, coarsest first, one level's
+// texels a frame; the frames between draw from what the textures hold (no holes: a level not
+// built yet hands its pixels to the coarser ones), and the last draws what one unbudgeted
+// frame draws.
+TEST_F(TerrainRender, APatchBudgetSpreadsTheLevelsOverFramesAndEndsWithTheSamePicture) {
+  const PlanetDescription planet = resolvePreset("earth");
+  RenderSettings budgeted = smallSettings(true);
+  const uint64_t level = uint64_t(budgeted.terrain.patchSettings.resolution) * budgeted.terrain.patchSettings.resolution;
+  budgeted.terrain.patchTexelsPerFrame = level;
+  Renderer renderer(context(), planet, budgeted);
+  for (const CameraPose& pose : {CameraPose{kLat, kLon, 3000.0, 30.0, -20.0}, CameraPose{kLat, kLon, 40.0, 30.0, -20.0}}) {
+    SCOPED_TRACE("altitude " + std::to_string(pose.altitudeM));
+    Rgba8Image whole;
+    {
+      Renderer single(context(), planet, smallSettings(true));
+      whole = single.render(pose, {}).image;
+    }
+    RenderResult frame = renderer.render(pose, {});
+    const Rgba8Image first = frame.image;
+    EXPECT_GT(frame.terrain.patchLevelsDeferred, 0u);
+    uint32_t frames = 1;
+    while (frame.terrain.patchLevelsDeferred > 0 && frames < 10) {
+      EXPECT_LE(frame.terrain.patchTexelsWritten, level);
+      frame = renderer.render(pose, {});
+      ++frames;
+    }
+    EXPECT_EQ(frame.terrain.patchLevelsDeferred, 0u);
+    const double early = psnrRgb(first, whole);
+    std::printf("%u frames to build the levels; the first frame against the whole build: %.1f dB\n", frames, early);
+    EXPECT_GE(frames, 2u);
+    EXPECT_GE(early, 25.0);
+    // One more frame: everything is built, and it is the unbudgeted picture.
+    frame = renderer.render(pose, {});
+    EXPECT_EQ(frame.terrain.patchLevelsRebuilt, 0u);
+    EXPECT_EQ(frame.image.pixels, whole.pixels);
+  }
 }
 
 TEST_F(TerrainRender, TwoMetresAboveTheGroundVerticesAreDenserThanHalfAMetre) {

@@ -89,6 +89,7 @@ struct FrameRecord {
   uint64_t triangles = 0;
   uint32_t verticesEvaluated = 0;
   uint32_t patchLevelsRebuilt = 0;
+  uint32_t patchLevelsDeferred = 0;  // levels whose work waited for a later frame (the texel budget)
   double metresPerVertexAtNadir = 0.0;
 
   double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
@@ -108,6 +109,7 @@ struct ModeRun {
   double verticesEvaluatedMedian = 0.0;
   double patchLevelsRebuiltMean = 0.0;
   uint32_t patchLevelsRebuiltMax = 0;
+  uint32_t patchLevelsDeferredMax = 0;
 };
 
 struct FrameBenchReport {

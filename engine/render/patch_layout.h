@@ -56,6 +56,13 @@ struct PatchSettings {
   uint32_t recentreDivisor = 8;
 };
 
+// The patch texels a real-time frame may write (TerrainSettings::patchTexelsPerFrame): one whole
+// level's, so that a jump that makes several levels stale costs the frames after it one level
+// each instead of one frame all of them (the benchmark's p99, issue 12).
+inline uint64_t realTimePatchBudget(const PatchSettings& settings) {
+  return uint64_t(settings.resolution) * settings.resolution;
+}
+
 // Throws planet::Error naming the first bad value (resolution outside kPatchMinResolution ..
 // kPatchMaxResolution or not a multiple of recentreDivisor, levelCount outside 1 .. kPatchMaxLevels,
 // texelsPerNadirPixel not finite and > 0, recentreDivisor outside 2 .. resolution).

@@ -257,6 +257,46 @@ void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& lev
 }
 
 uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
+  return updateLevels(cmd, layout, std::vector<bool>(layout.levels.size(), true), slot);
+}
+
+uint32_t PatchTextures::update(VkCommandBuffer cmd, const Plan& plan, uint32_t slot) {
+  if (plan.usable.size() != plan.layout.levels.size())
+    throw Error(fmt::format("patch plan has {} levels and {} usable flags", plan.layout.levels.size(),
+                            plan.usable.size()));
+  return updateLevels(cmd, plan.layout, plan.usable, slot);
+}
+
+PatchTextures::Plan PatchTextures::plan(const PatchLayout& desired, uint64_t texelBudget) const {
+  Plan plan;
+  plan.layout = desired;
+  plan.usable.assign(desired.levels.size(), true);
+  uint64_t spent = 0;
+  // Coarsest first: a coarse level stands in for every finer one that waits.
+  for (size_t j = desired.levels.size(); j-- > 0;) {
+    const PatchLevel& level = desired.levels[j];
+    if (level.layer >= contents_.size()) continue;  // update() reports the bad layer
+    uint64_t texels = 0;
+    for (const Region& r : staleRegions(desired.face, level)) texels += uint64_t(r.width) * r.height;
+    if (texels == 0) continue;
+    if (texelBudget == 0 || spent == 0 || spent + texels <= texelBudget) {
+      spent += texels;
+      continue;
+    }
+    ++plan.deferred;
+    const LayerContent& held = contents_[level.layer];
+    if (held.valid && held.face == desired.face && held.exponent == level.exponent) {
+      plan.layout.levels[j].originA = held.originA;
+      plan.layout.levels[j].originB = held.originB;
+    } else {
+      plan.usable[j] = false;
+    }
+  }
+  return plan;
+}
+
+uint32_t PatchTextures::updateLevels(VkCommandBuffer cmd, const PatchLayout& layout, const std::vector<bool>& usable,
+                                     uint32_t slot) {
   vk::checkFrameSlot(slot);
   if (layout.resolution != settings_.resolution)
     throw Error(fmt::format("patch layout resolution {} differs from the patch textures' {}", layout.resolution,
@@ -291,7 +331,9 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, u
   std::vector<Work> work;
   uint32_t levelsTouched = 0;
   lastUpdateTexels_ = 0;
-  for (const PatchLevel& level : layout.levels) {
+  for (size_t j = 0; j < layout.levels.size(); ++j) {
+    if (!usable[j]) continue;
+    const PatchLevel& level = layout.levels[j];
     const std::vector<Region> regions = staleRegions(layout.face, level);
     levelsTouched += regions.empty() ? 0 : 1;
     for (size_t r = 0; r < regions.size(); ++r) {
@@ -327,8 +369,10 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, u
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
-  for (const PatchLevel& level : layout.levels)
-    contents_[level.layer] = {true, layout.face, level.exponent, level.originA, level.originB};
+  for (size_t j = 0; j < layout.levels.size(); ++j) {
+    const PatchLevel& level = layout.levels[j];
+    if (usable[j]) contents_[level.layer] = {true, layout.face, level.exponent, level.originA, level.originB};
+  }
   return levelsTouched;
 }
 

@@ -76,6 +76,22 @@ class PatchTextures {
   // outside [−60, 60], or a bad slot; then nothing was recorded or marked up to date.
   uint32_t update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot = 0);
 
+  // A frame's share of the work toward `desired` (issue 12, point 5: patch strips spread over
+  // frames so that no frame pays for several whole levels). Levels are taken coarsest first
+  // while their stale texels fit in `texelBudget` (0: no limit; the first level with work is
+  // always taken, so every frame makes progress). A level left for later keeps what its layer
+  // holds if that is the same level (same face and exponent, an older centre: still exact
+  // terrain, its coverage a little off-centre), else it is not sampled this frame (`usable`
+  // false: the terrain's shader hands its weight to coarser levels).
+  struct Plan {
+    PatchLayout layout;        // per level: the desired placement, or what its layer holds
+    std::vector<bool> usable;  // per level
+    uint32_t deferred = 0;     // levels whose work was left for later frames
+  };
+  Plan plan(const PatchLayout& desired, uint64_t texelBudget) const;
+  // update() of a plan's layout, skipping the levels it marks unusable.
+  uint32_t update(VkCommandBuffer cmd, const Plan& plan, uint32_t slot = 0);
+
   // Marks every level stale, e.g. after the planet's parameters changed.
   void invalidate();
 
@@ -133,6 +149,8 @@ class PatchTextures {
   void createPipelines();
   // The regions of `level` its layer does not hold yet (none when it holds all of it).
   std::vector<Region> staleRegions(int face, const PatchLevel& level) const;
+  uint32_t updateLevels(VkCommandBuffer cmd, const PatchLayout& layout, const std::vector<bool>& usable,
+                        uint32_t slot);
   void writeRegion(const PatchLayout& layout, const PatchLevel& level, const Region& region,
                    RegionResources& resources, uint32_t slot);
 

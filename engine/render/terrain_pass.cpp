@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "planet/clipmap_culling.h"
 #include "planet/octave_budget.h"
 #include "planet/planet_gpu_data.h"
 #include "planet/terrain_height.h"
@@ -49,6 +50,7 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // patches
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // relief
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // chunks
 };
 constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
 
@@ -139,15 +141,6 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   vk::uploadBuffer(context, *meshVertices_, mesh_.vertices.data(), vertexCount * sizeof(ClipmapVertex));
   const uint32_t rings = mesh_.ringCount();
   const uint32_t n = settings.mesh.numPhi;
-  std::vector<uint32_t> indices = mesh_.indices;
-  indices.reserve(indices.size() + size_t(rings) * 3 * n);
-  for (uint32_t ring = 0; ring < rings; ++ring)
-    for (uint32_t i = 0; i < n; ++i)
-      indices.insert(indices.end(),
-                     {mesh_.vertexIndex(ring, i), mesh_.vertexIndex(ring, (i + 1) % n), mesh_.poleVertex()});
-  indices_ = {context, vk::createBuffer(context, indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                                        vk::MemoryUsage::DeviceLocal)};
-  vk::uploadBuffer(context, *indices_, indices.data(), indices.size() * sizeof(uint32_t));
 
   // Octave budgets per ring (and the pole), from the ring spacing: constant for a mesh.
   std::vector<gpu::RingBudget> budgets(rings + 1, gpu::RingBudget{});
@@ -176,6 +169,13 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
                      vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload)};
     uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
                                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
+    // Room for every band and the fan, and for a chunk per sector and per workgroup of every ring.
+    const VkDeviceSize maxIndices = VkDeviceSize(6) * n * (rings - 1) + VkDeviceSize(3) * n;
+    const VkDeviceSize maxChunks =
+        VkDeviceSize(rings) * (std::min(kCullSectors, n) + n / gpu::kTerrainComputeWorkgroupSize + 1) + 1;
+    drawIndices_[slot] = {context, vk::createBuffer(context, maxIndices * sizeof(uint32_t),
+                                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload)};
+    chunks_[slot] = {context, vk::createBuffer(context, maxChunks * sizeof(glm::uvec2), storage, vk::MemoryUsage::Upload)};
     if (settings.heightSource == HeightSource::Cpu)
       cpuStaging_[slot] = {context, vk::createBuffer(context, 3 * vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                      vk::MemoryUsage::Upload)};
@@ -192,6 +192,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
                                    &data_->permutations(), &*budgets_};
     for (uint32_t b = 0; b < gpu::kRenderBindingPatches; ++b)
       vk::writeBufferDescriptor(context, set, b, kBindingTypes[b], *buffers[b]);
+    vk::writeBufferDescriptor(context, set, gpu::kRenderBindingChunks, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                              *chunks_[slot]);
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
@@ -372,7 +374,13 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   const glm::dmat4 projection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
   frame_ = info;
+  // This frame's share of the patch levels' work (all of it without a budget).
+  patchPlan_ = patches ? patches_->plan(info.patchLayout, settings_.patchTexelsPerFrame) : PatchTextures::Plan{};
+  frame_.patchLevelsDeferred = patchPlan_.deferred;
   writeUniforms(view, projection * viewM, cameraZ);
+  // A frozen mesh keeps the cells its own frame kept, so that it can be looked at from elsewhere.
+  if (!info.lodFrozen) lod.cull = cullFor(projection * viewM, cameraZ, settings_.frustumCulling);
+  const uint64_t vertices = writeCulledMesh(lod.cull);
 
   // What the heights depend on: unchanged while frozen (unless a toggle changes the patch layout).
   pending_ = ComputeKey{};
@@ -380,6 +388,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   pending_.orientation = lod.orientation.localToPlanet;
   pending_.firstRing = lod.rings.firstRing;
   pending_.lastRing = lod.rings.lastRing;
+  pending_.vertices = vertices;
   if (patches) {
     pending_.face = info.patchLayout.face;
     pending_.exponent = info.patchLayout.levels[0].exponent;
@@ -387,6 +396,36 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
     pending_.originB = info.patchLayout.levels[0].originB;
   }
   return frame_;
+}
+
+ClipmapCull TerrainPass::cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull) const {
+  ClipmapCullView view;
+  view.viewProjection = viewProjection;
+  view.radiusM = planet_.radiusM;
+  view.cameraZ = cameraZ;
+  view.minHeightM = lowestSurfaceM_;
+  view.maxHeightM = maxTerrainHeightM_;
+  return cullClipmap(mesh_, frame_.rings.firstRing, frame_.rings.lastRing, view, gpu::kTerrainComputeWorkgroupSize,
+                     cull);
+}
+
+uint64_t TerrainPass::writeCulledMesh(const ClipmapCull& culled) {
+  // Host-visible: plain copies (the slot's previous frame has completed).
+  vk::uploadBuffer(context_, *drawIndices_[slot_], culled.indices.data(), culled.indices.size() * sizeof(uint32_t));
+  std::vector<glm::uvec2> chunks;
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a over the chunks
+  for (const ClipmapCull::Chunk& c : culled.chunks) {
+    chunks.emplace_back(c.firstVertex, c.count);
+    for (uint32_t word : {c.firstVertex, c.count}) hash = (hash ^ word) * 1099511628211ull;
+  }
+  vk::uploadBuffer(context_, *chunks_[slot_], chunks.data(), chunks.size() * sizeof(glm::uvec2));
+  drawIndexCount_ = uint32_t(culled.indices.size());
+  chunkCount_ = uint32_t(chunks.size());
+  frame_.triangles = drawIndexCount_ / 3;
+  frame_.cellsKept = culled.cellsKept;
+  frame_.cellsTotal = culled.cellsTotal;
+  culledVertices_ = culled.vertexCount();
+  return hash;
 }
 
 void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewProjection, double cameraZ) {
@@ -442,12 +481,14 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
     u.faceAxisB = glm::vec4(glm::vec3(face.axisB), float(glm::dot(ref, face.axisB)));
     u.faceNormal = glm::vec4(glm::vec3(face.normal), float(glm::dot(ref, face.normal)));
     u.refMinusNadir = glm::vec4(glm::vec3(ref - o.nadirDirection()), float(layout.levels.size()));
+    // Each level as the textures will hold it this frame (PatchTextures::plan: a level whose
+    // work waits keeps its older centre, or is not sampled, layer −1).
     for (size_t j = 0; j < layout.levels.size(); ++j) {
-      const PatchLevel& level = layout.levels[j];
+      const PatchLevel& level = patchPlan_.layout.levels[j];
       const double texel = std::ldexp(1.0, level.exponent);
-      u.patchLevels[j] =
-          glm::vec4(float(level.layer), float(1.0 / (texel * layout.resolution)),
-                    float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
+      u.patchLevels[j] = glm::vec4(patchPlan_.usable[j] ? float(level.layer) : -1.0f,
+                                   float(1.0 / (texel * layout.resolution)),
+                                   float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
       const glm::vec2 wrap = PatchTextures::storageOffset(level, layout.resolution);
       if (j % 2 == 0) {
         u.patchWrap[j / 2].x = wrap.x;
@@ -518,26 +559,27 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     // The draws evaluate every vertex they draw, every frame, the sea's again: nothing to
     // compute ahead.
     frame_.heightsComputed = true;
-    frame_.verticesEvaluated = ((frame_.rings.lastRing - frame_.rings.firstRing + 1) * n + 1) * (frame_.waterDrawn ? 2 : 1);
+    frame_.verticesEvaluated = culledVertices_ * (frame_.waterDrawn ? 2 : 1);
   } else if (frame_.heightsComputed) {
     if (timer) timer->begin(cmd, "heights");
     // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
-    gpu::TerrainComputePush push = heightPush();
-    push.firstVertex = frame_.heightFirstRing * n;
-    push.vertexCount = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
-    frame_.verticesEvaluated = push.vertexCount + 1;
+    const gpu::TerrainComputePush push = heightPush();
     // Heights and normals together (their analytic gradient), on the GPU or uploaded from the CPU.
     if (settings_.heightSource == HeightSource::Cpu) {
-      recordCpuHeights(cmd, push.firstVertex, push.vertexCount);
+      // The CPU reference evaluates the drawn rings whole (a comparison mode: it stays simple).
+      const uint32_t first = frame_.heightFirstRing * n;
+      const uint32_t count = (frame_.heightLastRing - frame_.heightFirstRing + 1) * n;
+      frame_.verticesEvaluated = count + 1;
+      recordCpuHeights(cmd, first, count);
     } else {
+      // One workgroup per chunk of the culled mesh's vertices.
+      frame_.verticesEvaluated = culledVertices_;
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightsPipeline_.get());
       vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-      vkCmdDispatch(cmd,
-                    (push.vertexCount + 1 + gpu::kTerrainComputeWorkgroupSize - 1) / gpu::kTerrainComputeWorkgroupSize,
-                    1, 1);
+      vkCmdDispatch(cmd, chunkCount_, 1, 1);
     }
     // The vertex shader reads positions, normals and attributes.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -551,7 +593,7 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   frame_.patchTexelsWritten = 0;
   if (!frame_.patchLayout.levels.empty()) {
     if (timer) timer->begin(cmd, "patches");
-    frame_.patchLevelsRebuilt = patches_->update(cmd, frame_.patchLayout, slot_);
+    frame_.patchLevelsRebuilt = patches_->update(cmd, patchPlan_, slot_);
     frame_.patchTexelsWritten = patches_->lastUpdateTexels();
     if (timer) timer->end(cmd);
   }
@@ -568,14 +610,7 @@ void TerrainPass::bindDrawState(VkCommandBuffer cmd) const {
     const gpu::TerrainComputePush push = heightPush();
     vkCmdPushConstants(cmd, drawLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
   }
-  vkCmdBindIndexBuffer(cmd, indices_->buffer, 0, VK_INDEX_TYPE_UINT32);
-}
-
-IndexRange TerrainPass::drawnBands() const { return mesh_.ringBandRange(frame_.rings.firstRing, frame_.rings.lastRing); }
-
-IndexRange TerrainPass::drawnFan() const {
-  const uint32_t n = settings_.mesh.numPhi;
-  return {mesh_.indexCount() + 3 * n * frame_.rings.lastRing, 3 * n};
+  vkCmdBindIndexBuffer(cmd, drawIndices_[slot_]->buffer, 0, VK_INDEX_TYPE_UINT32);
 }
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
@@ -583,10 +618,9 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipeline_;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
   bindDrawState(cmd);
-  const IndexRange bands = drawnBands();
-  const IndexRange fan = drawnFan();
-  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
-  vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
+  // The culled mesh: the kept quads of the drawn bands, then the fan that closes the innermost
+  // drawn ring at the pole (clipmap_culling.h).
+  vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
   if (timer) timer->end(cmd);
 }
 
@@ -595,7 +629,7 @@ void TerrainPass::recordWaterDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   // The sea over the ground, over the same ranges; the water pipeline shares the ground's layout.
   water_->bindPipeline(cmd);
   bindDrawState(cmd);
-  water_->recordDraw(cmd, drawnBands(), drawnFan(), timer);
+  water_->recordDraw(cmd, drawIndexCount_, timer);
 }
 
 }  // namespace planet

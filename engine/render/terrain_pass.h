@@ -12,7 +12,9 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "planet/clipmap_culling.h"
 #include "planet/clipmap_mesh.h"
+#include "render/patch_textures.h"
 #include "planet/clipmap_orientation.h"
 #include "planet/planet_description.h"
 #include "planet/planet_gpu_data.h"
@@ -68,6 +70,13 @@ struct TerrainSettings {
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
   double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
   bool water = true;          // draw the water sphere (planets with an ocean)
+  // Draw and evaluate only the cells of the mesh that the view frustum can show
+  // (clipmap_culling.h); off, every drawn ring whole (for tests that read every vertex back).
+  bool frustumCulling = true;
+  // At most this many patch texels written a frame (0: no limit): levels whose work does not fit
+  // wait for later frames, coarsest first (PatchTextures::plan). The viewer and the benchmark
+  // set it, so that a frame never builds several whole levels; a single render builds all.
+  uint64_t patchTexelsPerFrame = 0;
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
@@ -85,9 +94,12 @@ struct TerrainFrameInfo {
   double nearPlaneM = 0.0;
   double metresPerVertexAtNadir = 0.0;
   double poleCapRadiusM = 0.0;
-  uint64_t triangles = 0;
+  uint64_t triangles = 0;        // drawn, after culling
+  uint32_t cellsKept = 0;        // of the mesh cells of the drawn rings (clipmap_culling.h)
+  uint32_t cellsTotal = 0;
   uint32_t verticesEvaluated = 0;  // by the height pass this frame (0 when it was skipped; VertexShader: drawn, twice with the sea)
   double cpuHeightsMs = 0.0;       // HeightSource::Cpu: wall time of the CPU evaluation this frame
+  uint32_t patchLevelsDeferred = 0;  // levels whose work waits for a later frame (patchTexelsPerFrame)
   uint32_t patchLevelsRebuilt = 0;  // levels the patch textures wrote to this frame (whole or new strips)
   uint64_t patchTexelsWritten = 0;  // texels they wrote
   bool heightsComputed = false;
@@ -208,6 +220,7 @@ class TerrainPass {
     uint64_t triangles = 0;
     double nadirPixelM = 0.0;  // ground size of a pixel at the nadir, which the patch layout follows
     PatchLayout patchLayout;   // chosen when the patch textures are first sampled for this LOD
+    ClipmapCull cull;          // the cells of the rings the frame's view frustum keeps (clipmap_culling.h)
   };
 
   // Creates what the current toggles need and does not exist yet: the draw pipeline of the
@@ -217,9 +230,14 @@ class TerrainPass {
   // Binds what both draws read (descriptor set, index buffer, the vertex-shader source's push
   // constants) with `layout`'s pipeline already bound.
   void bindDrawState(VkCommandBuffer cmd) const;
-  // The bands of the drawn ring range, and the fan that closes ring lastRing at the pole.
-  IndexRange drawnBands() const;
-  IndexRange drawnFan() const;
+  // Culls the mesh for the view (every cell kept when `cull` is false).
+  ClipmapCull cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull) const;
+  // Writes a culled mesh's triangle list and vertex chunks into the slot's buffers; returns a
+  // hash of the chunks.
+  uint64_t writeCulledMesh(const ClipmapCull& culled);
+  uint32_t drawIndexCount_ = 0;  // of the last writeCulledMesh
+  uint32_t chunkCount_ = 0;
+  uint32_t culledVertices_ = 0;
   // HeightSource::VertexShader: terrain_noise.vert's variant for this planet, and its
   // specialization constants for the ground (water false) or the sea.
   std::span<const uint32_t> noiseVertexSpirv() const;
@@ -255,7 +273,6 @@ class TerrainPass {
   std::unique_ptr<PatchTextures> patches_;
   std::unique_ptr<ReliefCube> relief_;
   vk::Owned<vk::Buffer> meshVertices_;
-  vk::Owned<vk::Buffer> indices_;  // the mesh's indices, then a fan to the pole for every ring
   vk::Owned<vk::Buffer> budgets_;
   vk::Owned<vk::Buffer> surface_;
   vk::Owned<vk::Buffer> normals_;
@@ -264,6 +281,10 @@ class TerrainPass {
   vk::Owned<vk::Buffer> remainders_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> shifts_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
+  // The frame's culled mesh (clipmap_culling.h): its triangle list, and its vertices as chunks
+  // (uvec2: first vertex, count) for the height pass.
+  vk::Owned<vk::Buffer> drawIndices_[vk::kFramesInFlight];
+  vk::Owned<vk::Buffer> chunks_[vk::kFramesInFlight];
   // HeightSource::Cpu: surface, normals, then attributes, each as the mesh's vertices.
   vk::Owned<vk::Buffer> cpuStaging_[vk::kFramesInFlight];
   vk::Owned<VkDescriptorSetLayout> setLayout_;
@@ -283,6 +304,7 @@ class TerrainPass {
   std::optional<Lod> lod_;  // the last prepared frame's
   OctaveTables tables_;     // lod_'s
   gpu::FrameUniforms uniformData_{};
+  PatchTextures::Plan patchPlan_;  // the last prepared frame's
   // What the last computed heights were computed for: skip the compute when it is unchanged.
   struct ComputeKey {
     glm::dvec3 camera{0.0};
@@ -291,6 +313,7 @@ class TerrainPass {
     int face = -1;
     int exponent = 0;
     int64_t originA = 0, originB = 0;
+    uint64_t vertices = 0;  // a hash of the culled mesh's vertex chunks
     bool operator==(const ComputeKey&) const = default;
   };
   std::optional<ComputeKey> computed_;

@@ -89,6 +89,7 @@ RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality qualit
   s.terrain.subPixelRings = p.subPixelRings;
   s.terrain.patches = p.patches && !base.terrain.wireframe && base.terrain.patches;
   s.terrain.patchSettings.resolution = p.patchResolution;
+  s.terrain.patchTexelsPerFrame = realTimePatchBudget(s.terrain.patchSettings);
   s.sky.viewSamples = p.atmosphereSamples;
   return s;
 }

@@ -27,11 +27,10 @@ WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat col
   pipeline_ = {context, vk::createGraphicsPipeline(context, desc)};
 }
 
-void WaterPass::recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const IndexRange& fan, vk::GpuTimer* timer) {
+void WaterPass::recordDraw(VkCommandBuffer cmd, uint32_t indexCount, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "water");
   bindPipeline(cmd);
-  if (bands.indexCount) vkCmdDrawIndexed(cmd, bands.indexCount, 1, bands.firstIndex, 0, 0);
-  vkCmdDrawIndexed(cmd, fan.indexCount, 1, fan.firstIndex, 0, 0);
+  vkCmdDrawIndexed(cmd, indexCount, 1, 0, 0, 0);
   if (timer) timer->end(cmd);
 }
 

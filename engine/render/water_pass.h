@@ -37,9 +37,9 @@ class WaterPass {
   WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
             std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> vertexSpecialization = {});
 
-  // Records the draw of the ground's index ranges (the bands, then the fan that closes the mesh at
-  // the pole) with the terrain's descriptor set and index buffer bound (it binds its pipeline).
-  void recordDraw(VkCommandBuffer cmd, const IndexRange& bands, const IndexRange& fan, vk::GpuTimer* timer);
+  // Records the draw of the ground's triangles (the first `indexCount` indices of the bound index
+  // buffer) with the terrain's descriptor set and index buffer bound (it binds its pipeline).
+  void recordDraw(VkCommandBuffer cmd, uint32_t indexCount, vk::GpuTimer* timer);
   // Binds the pipeline alone, so that the terrain pass can bind its set over it.
   void bindPipeline(VkCommandBuffer cmd) const;
 

@@ -33,7 +33,8 @@ GPU_CONST uint kRenderBindingBudgets = 9u;         // RingBudget[rings + 1] (the
 GPU_CONST uint kRenderBindingPatches = 10u;        // sampler2DArray: normal (planet frame), height m
 GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere's transmittance table
 GPU_CONST uint kRenderBindingRelief = 12u;         // samplerCube: normal (planet frame), height m (relief_params.h)
-GPU_CONST uint kRenderBindingCount = 13u;
+GPU_CONST uint kRenderBindingChunks = 13u;         // uvec2[]: the height pass's vertex runs (first vertex, count)
+GPU_CONST uint kRenderBindingCount = 14u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
@@ -111,8 +112,8 @@ GPU_ASSERT_SIZE(FrameUniforms, 2048)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
-  uint firstVertex;  // first vertex of the ring range (ring · numPhi)
-  uint vertexCount;  // vertices of the ring range; one more invocation handles the pole
+  uint firstVertex;  // unused since the height pass takes its vertices from the chunks binding
+  uint vertexCount;  // likewise (kept for the std430 layout)
   uint numPhi;       // vertices per ring
   uint ringCount;    // rings of the mesh (the pole is vertex ringCount · numPhi)
   uint layerCount;
