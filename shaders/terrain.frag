@@ -18,6 +18,8 @@
 
 #include "common/rings.glsl"
 
+#include "common/eclipse.glsl"
+
 // The planet's colour scheme (ColorScheme) and whether it has polar caps, as specialization
 // constants (TerrainPass::createDrawPipeline): lavapipe runs every side of a branch, so each
 // scheme's code would cost every planet; with constants the compiler drops the others.
@@ -143,9 +145,14 @@ void main() {
     vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
     sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);
   }
+  // Other bodies of a scene hide the sun (common/eclipse.glsl): its direct light, and the sky's
+  // light and the fill, as the air above a shadowed point and the ground around it are in the
+  // same shadow (an approximation at the shadow's edge, where some light comes from outside it).
+  float eclipse = eclipseSunVisible(-inToCamera, sun, frame.eclipse);
+  sunLight *= eclipse;
   float muS = dot(up, sun);
   // Sky light, more on ground that faces the sky; airless bodies get a faint fill instead.
-  vec3 skyLight = (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));
+  vec3 skyLight = eclipse * (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));
   vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight);
   outColor = vec4(radiance, 1.0f);
 }

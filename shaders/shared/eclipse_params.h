@@ -1,0 +1,25 @@
+// Eclipses (issue 23, point 1): the bodies that can hide the sun from a body's surface, its air
+// and its rings, as the shaders read them (shaders/common/eclipse.glsl). C++ fills them with
+// planet::eclipseGpuParams (engine/reference/eclipse.h) each frame.
+//
+// Positions are relative to the camera, in the frame of the pass that reads them (the terrain's
+// and sky's local frame, the ring's body frame), so that no float holds a scene-size position
+// next to a small offset.
+#ifndef PLANET_SHARED_ECLIPSE_PARAMS_H
+#define PLANET_SHARED_ECLIPSE_PARAMS_H
+
+#include "shared/gpu_types.h"
+
+GPU_NAMESPACE_BEGIN
+
+GPU_CONST uint kEclipseMaxOccluders = 8u;  // = kMaxSceneBodies (planet/scene_description.h)
+
+struct EclipseParams {
+  vec4 occluders[kEclipseMaxOccluders];  // xyz: the occluding sphere's centre minus the camera (m), w: its radius (m)
+  vec4 sun;                              // x: the sun's angular radius (rad), y: occluder count, z, w: unused
+};
+GPU_ASSERT_SIZE(EclipseParams, 144)
+
+GPU_NAMESPACE_END
+
+#endif

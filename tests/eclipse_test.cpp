@@ -1,0 +1,304 @@
+// Eclipses (issue 23, point 1): the shared function of shaders/common/eclipse.glsl against the
+// area of overlap of two discs integrated independently (Eclipse.*), the built-in system's
+// documented eclipse times, and pictures of both eclipses on lavapipe (EclipseGpu.*).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <gtest/gtest.h>
+
+#include "camera/scene_view.h"
+#include "core/image_file.h"
+#include "gpu_fixture.h"
+#include "planet/scene_description.h"
+#include "planet/terrain_height.h"
+#include "reference/eclipse.h"
+#include "reference/sunlight.h"
+#include "render/renderer.h"
+#include "test_support.h"
+
+namespace planet::test {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// The documented times of the built-in system (engine/planet/scenes/system.toml, README):
+// the Moon's umbra on Terra's sub-solar point, and the Moon in the middle of Terra's umbra.
+constexpr double kSolarEclipseS = 7867740.0;
+constexpr double kLunarEclipseS = 7941160.0;
+// Where the Moon's shadow axis meets Terra at kSolarEclipseS (Terra's frame, degrees).
+constexpr double kUmbraLatitudeDeg = 0.04;
+constexpr double kUmbraLongitudeDeg = 127.86;
+
+// The share of a unit disc (the sun) that a disc of radius k, centred s away along x, covers:
+// the midpoint rule over vertical strips, each strip covered where both discs' chords at its x
+// overlap (both chords are centred on y = 0, so that is twice the shorter half chord). No
+// closed form: it checks the shared function's lens formula independently.
+double coveredByStrips(double k, double s, int strips) {
+  const double lo = std::max(-1.0, s - k), hi = std::min(1.0, s + k);
+  if (!(hi > lo)) return 0.0;
+  const double dx = (hi - lo) / strips;
+  double sum = 0.0;
+  for (int i = 0; i < strips; ++i) {
+    const double x = lo + (i + 0.5) * dx;
+    const double sunHalf = std::sqrt(std::max(1.0 - x * x, 0.0));
+    const double occluderHalf = std::sqrt(std::max(k * k - (x - s) * (x - s), 0.0));
+    sum += 2.0 * std::min(sunHalf, occluderHalf) * dx;
+  }
+  return sum / kPi;
+}
+
+// The penumbra's profile: for occluders smaller than, as large as and much larger than the sun
+// (the Moon seen from Terra is ~0.4 to 2 suns here, Terra from the Moon ~13), the covered share
+// at 121 separations from concentric to past first contact. The strips' own error is below
+// 1e-6 at 40,000 strips (their ends follow a square root: O(n^-1.5)); the tolerance, 1e-4 of
+// the sun's disc, is what float leaves of acos near 1 (a rounding of x by 6e-8 moves acos(x) by
+// ~6e-8 / sqrt(2 (1 − x))); double must agree to 1e-6.
+TEST(Eclipse, PenumbraProfileMatchesTheAreaOfOverlapOfTwoDiscs) {
+  double worstFloat = 0.0, worstDouble = 0.0;
+  for (double k : {0.25, 0.6, 0.95, 1.0, 1.05, 2.0, 13.0}) {
+    for (int i = 0; i <= 120; ++i) {
+      const double s = (1.0 + k + 0.05) * i / 120.0;
+      const double expected = coveredByStrips(k, s, 40000);
+      worstFloat = std::max(worstFloat, std::abs(double(sunDiscCoveredCpu(float(k), float(s))) - expected));
+      worstDouble = std::max(worstDouble, std::abs(sunDiscCovered(k, s) - expected));
+      ASSERT_NEAR(sunDiscCoveredCpu(float(k), float(s)), expected, 1e-4) << "k " << k << " s " << s;
+    }
+  }
+  EXPECT_LT(worstDouble, 1e-6);
+  std::printf("disc overlap: worst difference from the strips %.2e (float), %.2e (double)\n", worstFloat,
+              worstDouble);
+}
+
+// The three regions: the occluder covers the sun (umbra: no light), misses it (full sun), or
+// lies inside it (antumbra: an annular eclipse leaves the ring 1 − k²); the lens joins them
+// without a jump.
+TEST(Eclipse, UmbraIsDarkOutsideIsFullAndAnAnnularEclipseLeavesARing) {
+  EXPECT_EQ(sunDiscCoveredCpu(1.2f, 0.1f), 1.0f);
+  EXPECT_EQ(sunDiscCoveredCpu(13.0f, 11.9f), 1.0f);
+  EXPECT_EQ(sunDiscCoveredCpu(0.5f, 1.6f), 0.0f);
+  EXPECT_EQ(sunDiscCoveredCpu(0.9f, 0.05f), 0.9f * 0.9f);
+  EXPECT_NEAR(1.0f - sunDiscCoveredCpu(0.9f, 0.0f), 0.19f, 1e-6f);
+  for (float k : {0.5f, 0.95f, 1.5f, 13.0f}) {
+    const float inner = std::abs(1.0f - k), outer = 1.0f + k;
+    EXPECT_NEAR(sunDiscCoveredCpu(k, inner * 1.0001f + 1e-5f), sunDiscCoveredCpu(k, inner), 2e-3f) << k;
+    EXPECT_NEAR(sunDiscCoveredCpu(k, outer * 0.9999f), 0.0f, 2e-4f) << k;
+  }
+  // Monotone: the further apart, the less is covered.
+  for (float k : {0.6f, 1.0f, 2.0f}) {
+    float previous = 1.0f;
+    for (int i = 0; i <= 200; ++i) {
+      const float covered = sunDiscCoveredCpu(k, (1.0f + k) * float(i) / 200.0f);
+      EXPECT_LE(covered, previous + 1e-6f) << "k " << k << " step " << i;
+      previous = covered;
+    }
+  }
+}
+
+// The Moon of the system (radius 1,737.4 km) 60,000 km sunward of a plane facing the sun: its
+// shadow on the plane has the cone's radii, the umbra R − L tan ρ and the penumbra's outer edge
+// R + L tan ρ (ρ the presets' sun, 0.0075 rad), to 0.1 % (the flat-disc model's rounding).
+TEST(Eclipse, TheMoonsShadowHasTheConesRadii) {
+  const double radius = 1737400.0, distance = 6.0e7, rho = kSunAngularRadiusRad;
+  const glm::vec3 sun(0.0f, 0.0f, 1.0f);
+  auto visibleAt = [&](double x) {
+    return occluderSunVisibleCpu(glm::vec3(float(-x), 0.0f, float(distance)), float(radius), sun, float(rho));
+  };
+  const double umbra = radius - distance * std::tan(rho), penumbra = radius + distance * std::tan(rho);
+  EXPECT_EQ(visibleAt(0.0), 0.0f);
+  EXPECT_EQ(visibleAt(0.999 * umbra), 0.0f);
+  EXPECT_GT(visibleAt(1.001 * umbra), 0.0f);
+  EXPECT_LT(visibleAt(0.999 * penumbra), 1.0f);
+  EXPECT_EQ(visibleAt(1.001 * penumbra), 1.0f);
+  // At the shadow's geometric edge the occluder's limb crosses the sun's centre; it curves away
+  // from the sun (3.9 suns in radius), so a little more than half the sun shows.
+  EXPECT_GT(visibleAt(radius), 0.5f);
+  EXPECT_LT(visibleAt(radius), 0.6f);
+  // The profile across the penumbra is the disc overlap's: at each point the occluder's
+  // angular radius and separation give k and s (in suns).
+  for (int i = 0; i <= 20; ++i) {
+    const double x = umbra + (penumbra - umbra) * i / 20.0;
+    const double d = std::hypot(x, distance);
+    const double k = std::asin(radius / d) / rho, s = std::atan2(x, distance) / rho;
+    EXPECT_NEAR(visibleAt(x), 1.0 - coveredByStrips(k, s, 40000), 2e-4) << "x " << x;
+  }
+  std::printf("the Moon's shadow 60,000 km behind it: umbra radius %.0f km, penumbra %.0f km wide\n", umbra / 1e3,
+              (penumbra - umbra) / 1e3);
+}
+
+// Several occluders multiply their visible shares, the block's rotation turns their centres
+// with the sun, and a point inside an occluder gets no sun.
+TEST(Eclipse, OccludersMultiplyAndTurnWithTheFrame) {
+  const double rho = kSunAngularRadiusRad;
+  // Two spheres each half across the sun seen from the origin, on opposite sides of it.
+  const double distance = 1.0e8, radius = 1.0e6;
+  const std::vector<Occluder> occluders = {{{radius, 0.0, distance}, radius}, {{-radius, 0.0, 2.0 * distance}, radius}};
+  const gpu::EclipseParams e = eclipseGpuParams(occluders, glm::dmat3(1.0), rho);
+  const glm::vec3 sun(0.0f, 0.0f, 1.0f);
+  const float a = occluderSunVisibleCpu(glm::vec3(occluders[0].centreM), float(radius), sun, float(rho));
+  const float b = occluderSunVisibleCpu(glm::vec3(occluders[1].centreM), float(radius), sun, float(rho));
+  EXPECT_GT(a, 0.05f);
+  EXPECT_LT(a, 0.95f);
+  EXPECT_NEAR(eclipseSunVisibleCpu(glm::vec3(0.0f), sun, e), a * b, 1e-6f);
+  // The same, turned by 90 degrees about x (sun and centres alike).
+  const glm::dmat3 turn(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0);
+  const gpu::EclipseParams turned = eclipseGpuParams(occluders, turn, rho);
+  EXPECT_NEAR(eclipseSunVisibleCpu(glm::vec3(0.0f), glm::vec3(turn * glm::dvec3(sun)), turned), a * b, 1e-5f);
+  // A point inside the first sphere, and one beside both shadows.
+  EXPECT_EQ(eclipseSunVisibleCpu(glm::vec3(occluders[0].centreM), sun, e), 0.0f);
+  EXPECT_EQ(eclipseSunVisibleCpu(glm::vec3(1.0e7f, 0.0f, 0.0f), sun, e), 1.0f);
+  EXPECT_EQ(eclipseSunVisibleCpu(glm::vec3(0.0f), sun, eclipseGpuParams({}, glm::dmat3(1.0), rho)), 1.0f);
+}
+
+TEST(Eclipse, TooManyOccludersOrABadRadiusAreNamed) {
+  const std::vector<Occluder> nine(9, Occluder{{0.0, 0.0, 1.0e8}, 1.0e6});
+  EXPECT_EQ(errorOf([&] { eclipseGpuParams(nine, glm::dmat3(1.0), 0.0075); }),
+            "9 bodies can hide the sun, at most 8 are drawn");
+  const std::vector<Occluder> bad = {{{0.0, 0.0, 1.0e8}, -1.0}};
+  EXPECT_EQ(errorOf([&] { eclipseGpuParams(bad, glm::dmat3(1.0), 0.0075); }),
+            "occluder radius -1 m must be a finite number >= 0");
+}
+
+// The scene-frame point of a body's surface at latitude/longitude (its frame) at a time.
+glm::dvec3 surfacePoint(const SceneDescription& scene, const std::vector<BodyState>& states, size_t body,
+                        double latitudeDeg, double longitudeDeg) {
+  return states[body].positionM +
+         states[body].bodyToScene * (directionFromLatLon(latitudeDeg, longitudeDeg) * scene.bodies[body].planet.radiusM);
+}
+
+// The built-in system's documented times (system.toml, README): at the solar eclipse the
+// Moon's umbra (~1,340 km in radius on Terra) covers the documented point of Terra and the
+// ground 1,000 km from it, and ground 3,000 km away (past the penumbra's ~2,140 km) is in full
+// sun; at the lunar eclipse the whole Moon is in Terra's umbra (its centre and four points of
+// its limb), and the Moon half an orbit earlier is in full sun.
+TEST(Eclipse, TheSystemShowsBothEclipsesAtItsDocumentedTimes) {
+  const SceneDescription scene = resolveScene("system");
+  const size_t terra = sceneBodyIndex(scene, "Terra"), moon = sceneBodyIndex(scene, "Moon");
+  {
+    const std::vector<BodyState> states = sceneStateAt(scene, kSolarEclipseS);
+    const glm::dvec3 centre = surfacePoint(scene, states, terra, kUmbraLatitudeDeg, kUmbraLongitudeDeg);
+    EXPECT_EQ(sceneSunVisible(scene, states, terra, centre), 0.0);
+    // 1,000 km from the centre (9 degrees of Terra) still in the umbra; 3,000 km out in sun.
+    EXPECT_EQ(sceneSunVisible(scene, states, terra, surfacePoint(scene, states, terra, kUmbraLatitudeDeg + 9.0,
+                                                                 kUmbraLongitudeDeg)),
+              0.0);
+    EXPECT_EQ(sceneSunVisible(scene, states, terra, surfacePoint(scene, states, terra, kUmbraLatitudeDeg,
+                                                                 kUmbraLongitudeDeg + 27.0)),
+              1.0);
+    // The point faces the sun (the eclipse is on the day side): the sun is within a degree of its zenith.
+    const glm::dvec3 up = glm::normalize(centre - states[terra].positionM);
+    EXPECT_GT(glm::dot(up, -glm::normalize(centre)), std::cos(kPi / 180.0));
+  }
+  {
+    const std::vector<BodyState> states = sceneStateAt(scene, kLunarEclipseS);
+    const glm::dvec3 centre = states[moon].positionM;
+    const glm::dvec3 axis = glm::normalize(centre);  // away from the sun
+    const glm::dvec3 side = glm::normalize(glm::cross(axis, glm::dvec3(0.0, 0.0, 1.0)));
+    const glm::dvec3 other = glm::cross(axis, side);
+    const double radius = scene.bodies[moon].planet.radiusM;
+    EXPECT_EQ(sceneSunVisible(scene, states, moon, centre), 0.0);
+    for (const glm::dvec3& limb : {side, -side, other, -other})
+      EXPECT_EQ(sceneSunVisible(scene, states, moon, centre + radius * limb), 0.0);
+    const std::vector<BodyState> earlier = sceneStateAt(scene, kLunarEclipseS - 0.5 * scene.bodies[moon].orbit.periodS);
+    EXPECT_EQ(sceneSunVisible(scene, earlier, moon, earlier[moon].positionM), 1.0);
+  }
+}
+
+// --- Pictures (lavapipe) ----------------------------------------------------------------------
+
+using EclipseGpu = GpuTest;
+
+// The scene view of the camera `local` on body `body` at time t, optionally turned to `target`.
+SceneView sceneView(const std::vector<BodyState>& states, double timeS, size_t body, const CameraBasis& local) {
+  SceneView view;
+  view.camera = cameraToScene(states[body].positionM, states[body].bodyToScene, local);
+  view.bodies = sceneBodyViews(states);
+  view.timeS = timeS;
+  return view;
+}
+
+double luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// The mean HDR luminance of the (2r+1)² pixels around (x, y).
+double meanAround(const RenderResult& result, uint32_t width, int x, int y, int r) {
+  double sum = 0.0;
+  int n = 0;
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      sum += luminance(result.hdr[size_t(y + dy) * width + size_t(x + dx)]);
+      ++n;
+    }
+  return sum / n;
+}
+
+// The solar eclipse from 8,000 km above the umbra's centre, looking straight down: the middle
+// of the picture (the umbra, ~1,340 km in radius: 9.5 degrees of the view) is dark, in linear
+// HDR and on the display, and ground ~3,000 km away (20 degrees off the middle, past the
+// penumbra's ~2,140 km) is as sunlit as the same place with the Moon elsewhere.
+TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
+  const SceneDescription scene = resolveScene("system");
+  const size_t terra = sceneBodyIndex(scene, "Terra");
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  Renderer renderer(context(), scene, settings);
+  CameraPose pose;
+  pose.latitudeDeg = kUmbraLatitudeDeg;
+  pose.longitudeDeg = kUmbraLongitudeDeg;
+  pose.altitudeM = 8.0e6;
+  pose.pitchDeg = -90.0;
+  const CameraBasis local = cameraBasis(pose, scene.bodies[terra].planet.radiusM);
+  const std::vector<BodyState> states = sceneStateAt(scene, kSolarEclipseS);
+  const RenderResult eclipse = renderer.renderScene(sceneView(states, kSolarEclipseS, terra, local), true);
+  // The same frame with the Moon half an orbit away (Terra's place and turn kept: only the
+  // Moon moves), for the light outside the shadow.
+  std::vector<BodyState> moved = states;
+  const size_t moon = sceneBodyIndex(scene, "Moon");
+  moved[moon].positionM = 2.0 * states[terra].positionM - states[moon].positionM;
+  const RenderResult clear = renderer.renderScene(sceneView(moved, kSolarEclipseS, terra, local), true);
+  const int offset = int(std::lround(45.0 * std::tan(20.0 * kPi / 180.0) / std::tan(30.0 * kPi / 180.0)));
+  const double umbra = meanAround(eclipse, 160, 80, 45, 2);
+  const double litEclipse = meanAround(eclipse, 160, 80 + offset, 45, 2);
+  const double litClear = meanAround(clear, 160, 80 + offset, 45, 2);
+  const double middleClear = meanAround(clear, 160, 80, 45, 2);
+  writePng((testOutputDir() / "eclipse_solar.png").string(), eclipse.image);
+  ASSERT_GT(middleClear, 0.02) << "without the Moon the middle should be sunlit";
+  EXPECT_LT(umbra, 1e-3 * middleClear) << "the umbra should be dark: " << umbra << " vs " << middleClear;
+  EXPECT_NEAR(litEclipse / litClear, 1.0, 0.02) << "outside the penumbra the ground should be lit as without the Moon";
+  const uint8_t* middle = &eclipse.image.pixels[(45 * 160 + 80) * 4];
+  EXPECT_LE(std::max({middle[0], middle[1], middle[2]}), 3) << "the umbra should be black on the display";
+}
+
+// The lunar eclipse from 20,000 km above Terra's night side, looking at the Moon (40,000 km
+// away, 5 degrees across in a 10-degree view): the Moon inside Terra's umbra is dark, at most
+// 1 % of the same Moon an hour and a half later, outside the shadow (by then it has moved
+// 14,000 km along its orbit, past the penumbra, still nearly full).
+TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
+  const SceneDescription scene = resolveScene("system");
+  const size_t terra = sceneBodyIndex(scene, "Terra"), moon = sceneBodyIndex(scene, "Moon");
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.fovYDeg = 10.0;
+  Renderer renderer(context(), scene, settings);
+  double moonLight[2] = {0.0, 0.0};
+  int k = 0;
+  for (double t : {kLunarEclipseS, kLunarEclipseS + 5400.0}) {
+    const std::vector<BodyState> states = sceneStateAt(scene, t);
+    const glm::dvec3 toMoon = glm::transpose(states[terra].bodyToScene) * (states[moon].positionM - states[terra].positionM);
+    const glm::dvec3 position = glm::normalize(toMoon) * (scene.bodies[terra].planet.radiusM + 2.0e7);
+    const CameraBasis local = lookingAt(position, toMoon);
+    const RenderResult result = renderer.renderScene(sceneView(states, t, terra, local), true);
+    moonLight[k] = meanAround(result, 160, 80, 45, 6);
+    if (k == 0) writePng((testOutputDir() / "eclipse_lunar.png").string(), result.image);
+    ++k;
+  }
+  ASSERT_GT(moonLight[1], 0.02) << "outside the shadow the full Moon should be lit";
+  EXPECT_LT(moonLight[0], 0.01 * moonLight[1]) << moonLight[0] << " vs " << moonLight[1];
+}
+
+}  // namespace
+}  // namespace planet::test
