@@ -69,8 +69,7 @@ TEST(Eclipse, PenumbraProfileMatchesTheAreaOfOverlapOfTwoDiscs) {
     }
   }
   EXPECT_LT(worstDouble, 1e-6);
-  std::printf("disc overlap: worst difference from the strips %.2e (float), %.2e (double)\n", worstFloat,
-              worstDouble);
+  std::printf("disc overlap: worst difference from the strips %.2e (float), %.2e (double)\n", worstFloat, worstDouble);
 }
 
 // The three regions: the occluder covers the sun (umbra: no light), misses it (full sun), or
@@ -165,8 +164,8 @@ TEST(Eclipse, TooManyOccludersOrABadRadiusAreNamed) {
 // The scene-frame point of a body's surface at latitude/longitude (its frame) at a time.
 glm::dvec3 surfacePoint(const SceneDescription& scene, const std::vector<BodyState>& states, size_t body,
                         double latitudeDeg, double longitudeDeg) {
-  return states[body].positionM +
-         states[body].bodyToScene * (directionFromLatLon(latitudeDeg, longitudeDeg) * scene.bodies[body].planet.radiusM);
+  return states[body].positionM + states[body].bodyToScene * (directionFromLatLon(latitudeDeg, longitudeDeg) *
+                                                              scene.bodies[body].planet.radiusM);
 }
 
 // The built-in system's documented times (system.toml, README): at the solar eclipse the
@@ -182,11 +181,11 @@ TEST(Eclipse, TheSystemShowsBothEclipsesAtItsDocumentedTimes) {
     const glm::dvec3 centre = surfacePoint(scene, states, terra, kUmbraLatitudeDeg, kUmbraLongitudeDeg);
     EXPECT_EQ(sceneSunVisible(scene, states, terra, centre), 0.0);
     // 1,000 km from the centre (9 degrees of Terra) still in the umbra; 3,000 km out in sun.
-    EXPECT_EQ(sceneSunVisible(scene, states, terra, surfacePoint(scene, states, terra, kUmbraLatitudeDeg + 9.0,
-                                                                 kUmbraLongitudeDeg)),
+    EXPECT_EQ(sceneSunVisible(scene, states, terra,
+                              surfacePoint(scene, states, terra, kUmbraLatitudeDeg + 9.0, kUmbraLongitudeDeg)),
               0.0);
-    EXPECT_EQ(sceneSunVisible(scene, states, terra, surfacePoint(scene, states, terra, kUmbraLatitudeDeg,
-                                                                 kUmbraLongitudeDeg + 27.0)),
+    EXPECT_EQ(sceneSunVisible(scene, states, terra,
+                              surfacePoint(scene, states, terra, kUmbraLatitudeDeg, kUmbraLongitudeDeg + 27.0)),
               1.0);
     // The point faces the sun (the eclipse is on the day side): the sun is within a degree of its zenith.
     const glm::dvec3 up = glm::normalize(centre - states[terra].positionM);
@@ -237,7 +236,8 @@ double meanAround(const RenderResult& result, uint32_t width, int x, int y, int 
 // The solar eclipse from 8,000 km above the umbra's centre, looking straight down: the middle
 // of the picture (the umbra, ~1,340 km in radius: 9.5 degrees of the view) is dark, in linear
 // HDR and on the display, and ground ~3,000 km away (20 degrees off the middle, past the
-// penumbra's ~2,140 km) is as sunlit as the same place with the Moon elsewhere.
+// penumbra's ~2,140 km) is as sunlit as the same place with the Moon elsewhere. From the ground
+// there the sky is dark.
 TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
   const SceneDescription scene = resolveScene("system");
   const size_t terra = sceneBodyIndex(scene, "Terra");
@@ -270,6 +270,21 @@ TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
   EXPECT_NEAR(litEclipse / litClear, 1.0, 0.02) << "outside the penumbra the ground should be lit as without the Moon";
   const uint8_t* middle = &eclipse.image.pixels[(45 * 160 + 80) * 4];
   EXPECT_LE(std::max({middle[0], middle[1], middle[2]}), 3) << "the umbra should be black on the display";
+
+  // From the ground in the umbra's middle, looking 30 degrees up: the sky (the sky-view table,
+  // dimmed along each ray) is dark, under 3 % of the same sky with the Moon elsewhere (what is
+  // left, 1.3 % here, is mostly the stars that show through the darkened sky).
+  CameraPose ground = pose;
+  ground.altitudeM = 0.0;
+  ground.pitchDeg = 30.0;
+  const CameraBasis groundLocal = cameraBasis(ground, scene.bodies[terra].planet.radiusM);
+  const RenderResult skyInUmbra = renderer.renderScene(sceneView(states, kSolarEclipseS, terra, groundLocal), true);
+  writePng((testOutputDir() / "eclipse_solar_sky.png").string(), skyInUmbra.image);
+  const double skyEclipse = meanAround(skyInUmbra, 160, 80, 20, 10);
+  const double skyClear =
+      meanAround(renderer.renderScene(sceneView(moved, kSolarEclipseS, terra, groundLocal), true), 160, 80, 20, 10);
+  ASSERT_GT(skyClear, 0.01) << "without the Moon the noon sky should be bright";
+  EXPECT_LT(skyEclipse, 0.03 * skyClear) << skyEclipse << " vs " << skyClear;
 }
 
 // The lunar eclipse from 20,000 km above Terra's night side, looking at the Moon (40,000 km
@@ -288,7 +303,8 @@ TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
   int k = 0;
   for (double t : {kLunarEclipseS, kLunarEclipseS + 5400.0}) {
     const std::vector<BodyState> states = sceneStateAt(scene, t);
-    const glm::dvec3 toMoon = glm::transpose(states[terra].bodyToScene) * (states[moon].positionM - states[terra].positionM);
+    const glm::dvec3 toMoon =
+        glm::transpose(states[terra].bodyToScene) * (states[moon].positionM - states[terra].positionM);
     const glm::dvec3 position = glm::normalize(toMoon) * (scene.bodies[terra].planet.radiusM + 2.0e7);
     const CameraBasis local = lookingAt(position, toMoon);
     const RenderResult result = renderer.renderScene(sceneView(states, t, terra, local), true);

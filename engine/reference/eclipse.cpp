@@ -35,8 +35,8 @@ using DoubleKernel = EclipseKernel<double>;
 gpu::EclipseParams eclipseGpuParams(std::span<const Occluder> occluders, const glm::dmat3& toFrame,
                                     double sunAngularRadiusRad) {
   if (occluders.size() > gpu::kEclipseMaxOccluders)
-    throw Error(fmt::format("{} bodies can hide the sun, at most {} are drawn", occluders.size(),
-                            gpu::kEclipseMaxOccluders));
+    throw Error(
+        fmt::format("{} bodies can hide the sun, at most {} are drawn", occluders.size(), gpu::kEclipseMaxOccluders));
   gpu::EclipseParams e{};
   for (size_t i = 0; i < occluders.size(); ++i) {
     const Occluder& o = occluders[i];
