@@ -122,8 +122,9 @@ void main() {
   float fresnel = fresnelWater(cosView);
   float muS = dot(up, sun);
   // Other bodies of a scene hide the sun and the sky above (as in terrain.frag).
-  float eclipse = eclipseSunVisible(-inToCamera, sun, frame.eclipse);
-  vec3 sunLight = eclipse * sunIrradianceAt(frame.planet.x, up);
+  vec3 refracted;
+  float eclipse = eclipseSunVisibleRefracted(-inToCamera, sun, frame.eclipse, refracted);
+  vec3 sunLight = (vec3(eclipse) + refracted) * sunIrradianceAt(frame.planet.x, up);
   vec3 skyLight = eclipse * skyIrradianceAt(muS);
   // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);

@@ -3,6 +3,7 @@
 // documented eclipse times, and pictures of both eclipses on lavapipe (EclipseGpu.*).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "camera/scene_view.h"
 #include "core/image_file.h"
 #include "gpu_fixture.h"
+#include "planet/planet_description.h"
 #include "planet/scene_description.h"
 #include "planet/terrain_height.h"
 #include "reference/eclipse.h"
@@ -152,6 +154,37 @@ TEST(Eclipse, OccludersMultiplyAndTurnWithTheFrame) {
   EXPECT_EQ(eclipseSunVisibleCpu(glm::vec3(0.0f), sun, eclipseGpuParams({}, glm::dmat3(1.0), rho)), 1.0f);
 }
 
+// An occluder with air bends a little red light into its shadow (refractedIntoShadow's crude
+// model): Earth's is of the order the eclipsed Moon shows (10⁻⁴ of the sun), red above green
+// above blue by the tangent path's reddening; an airless body bends none. A point sees it in
+// proportion to the share of the sun the occluder covers.
+TEST(Eclipse, AnAtmosphereBendsRedLightIntoItsShadow) {
+  const glm::dvec3 earth = refractedIntoShadow(resolvePreset("earth"));
+  EXPECT_GT(earth.r, 1e-4);
+  EXPECT_LT(earth.r, 3e-3);
+  EXPECT_LT(earth.g, 0.3 * earth.r);
+  EXPECT_LT(earth.b, 0.3 * earth.g);
+  EXPECT_EQ(refractedIntoShadow(resolvePreset("moon")), glm::dvec3(0.0));
+  std::printf("Earth's air bends (%.2e, %.2e, %.2e) of the sun into its umbra\n", earth.r, earth.g, earth.b);
+
+  const double rho = kSunAngularRadiusRad, distance = 1.0e8;
+  const glm::vec3 sun(0.0f, 0.0f, 1.0f);
+  for (double offset : {0.0, 1.0e6}) {  // covered, then half across the sun
+    const std::vector<Occluder> occluder = {{{offset, 0.0, distance}, 1.0e6, earth}};
+    const gpu::EclipseParams e = eclipseGpuParams(occluder, glm::dmat3(1.0), rho);
+    glm::vec3 refracted;
+    const float visible = eclipseSunVisibleRefractedCpu(glm::vec3(0.0f), sun, e, refracted);
+    EXPECT_NEAR(refracted.r, float((1.0 - visible) * earth.r), 1e-9f) << offset;
+    EXPECT_NEAR(refracted.b, float((1.0 - visible) * earth.b), 1e-9f) << offset;
+    if (offset == 0.0) {
+      EXPECT_EQ(visible, 0.0f);
+    } else {
+      EXPECT_GT(visible, 0.2f);
+      EXPECT_LT(visible, 0.8f);
+    }
+  }
+}
+
 TEST(Eclipse, TooManyOccludersOrABadRadiusAreNamed) {
   const std::vector<Occluder> nine(9, Occluder{{0.0, 0.0, 1.0e8}, 1.0e6});
   EXPECT_EQ(errorOf([&] { eclipseGpuParams(nine, glm::dmat3(1.0), 0.0075); }),
@@ -159,6 +192,9 @@ TEST(Eclipse, TooManyOccludersOrABadRadiusAreNamed) {
   const std::vector<Occluder> bad = {{{0.0, 0.0, 1.0e8}, -1.0}};
   EXPECT_EQ(errorOf([&] { eclipseGpuParams(bad, glm::dmat3(1.0), 0.0075); }),
             "occluder radius -1 m must be a finite number >= 0");
+  const std::vector<Occluder> bright = {{{0.0, 0.0, 1.0e8}, 1.0e6, {0.5, 2.0, 0.0}}};
+  EXPECT_EQ(errorOf([&] { eclipseGpuParams(bright, glm::dmat3(1.0), 0.0075); }),
+            "occluder's refracted share 2 is outside [0, 1]");
 }
 
 // The scene-frame point of a body's surface at latitude/longitude (its frame) at a time.
@@ -220,6 +256,14 @@ SceneView sceneView(const std::vector<BodyState>& states, double timeS, size_t b
 }
 
 double luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// The mean HDR colour of the (2r+1)² pixels around (x, y).
+glm::dvec3 colourAround(const RenderResult& result, uint32_t width, int x, int y, int r) {
+  glm::dvec3 sum(0.0);
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) sum += glm::dvec3(result.hdr[size_t(y + dy) * width + size_t(x + dx)]);
+  return sum / double((2 * r + 1) * (2 * r + 1));
+}
 
 // The mean HDR luminance of the (2r+1)² pixels around (x, y).
 double meanAround(const RenderResult& result, uint32_t width, int x, int y, int r) {
@@ -290,7 +334,7 @@ TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
 // The lunar eclipse from 20,000 km above Terra's night side, looking at the Moon (40,000 km
 // away, 5 degrees across in a 10-degree view): the Moon inside Terra's umbra is dark, at most
 // 1 % of the same Moon an hour and a half later, outside the shadow (by then it has moved
-// 14,000 km along its orbit, past the penumbra, still nearly full).
+// 14,000 km along its orbit, past the penumbra, still nearly full), and what light it has is red.
 TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
   const SceneDescription scene = resolveScene("system");
   const size_t terra = sceneBodyIndex(scene, "Terra"), moon = sceneBodyIndex(scene, "Moon");
@@ -300,6 +344,7 @@ TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
   settings.fovYDeg = 10.0;
   Renderer renderer(context(), scene, settings);
   double moonLight[2] = {0.0, 0.0};
+  glm::dvec3 eclipsedColour(0.0);
   int k = 0;
   for (double t : {kLunarEclipseS, kLunarEclipseS + 5400.0}) {
     const std::vector<BodyState> states = sceneStateAt(scene, t);
@@ -309,11 +354,18 @@ TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
     const CameraBasis local = lookingAt(position, toMoon);
     const RenderResult result = renderer.renderScene(sceneView(states, t, terra, local), true);
     moonLight[k] = meanAround(result, 160, 80, 45, 6);
-    if (k == 0) writePng((testOutputDir() / "eclipse_lunar.png").string(), result.image);
+    if (k == 0) {
+      writePng((testOutputDir() / "eclipse_lunar.png").string(), result.image);
+      eclipsedColour = colourAround(result, 160, 80, 45, 6);
+    }
     ++k;
   }
   ASSERT_GT(moonLight[1], 0.02) << "outside the shadow the full Moon should be lit";
   EXPECT_LT(moonLight[0], 0.01 * moonLight[1]) << moonLight[0] << " vs " << moonLight[1];
+  // What light it gets is Terra's air's, bent into the umbra: red.
+  EXPECT_GT(eclipsedColour.r, 0.0);
+  EXPECT_GT(eclipsedColour.r, 3.0 * eclipsedColour.g) << eclipsedColour.r << " " << eclipsedColour.g;
+  EXPECT_GE(eclipsedColour.g, eclipsedColour.b);
 }
 
 }  // namespace

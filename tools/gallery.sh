@@ -58,9 +58,11 @@ render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,2
 render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
 render system_giant --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 20
 # Eclipses in the system (issue 23, at 640x360): the Moon's shadow on Terra from 8,000 km and
-# from 400 km inside it looking out, and the Moon half inside Terra's umbra (system.toml).
+# from 400 km inside it looking out, the Moon half inside Terra's umbra, and wholly inside it
+# at a long exposure (red with the light Terra's air bends into its shadow; system.toml).
 for eclipse in "solar:7867740:Terra:0.04,127.86,8e6,0,-90" "solar_400km:7867740:Terra:0.04,131,4e5,90,-25" \
-  "lunar:7938860:Terra:0.27,2.02,2e7 --look-at Moon --fov 10"; do
+  "lunar:7938860:Terra:0.27,2.02,2e7 --look-at Moon --fov 10" \
+  "lunar_total:7941160:Terra:0.27,2.02,2e7 --look-at Moon --fov 10 --exposure 20000"; do
   name=${eclipse%%:*}; rest=${eclipse#*:}; time=${rest%%:*}; camera=${rest#*:}
   echo "gallery: $out/system_eclipse_$name.png"
   # shellcheck disable=SC2086 # the camera and its options split into words

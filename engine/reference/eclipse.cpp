@@ -8,6 +8,7 @@
 
 #include "common/definitions.h"
 #include "core/error.h"
+#include "reference/atmosphere_model.h"
 #include "reference/sunlight.h"
 
 namespace planet {
@@ -20,6 +21,7 @@ struct EclipseKernel {
   PLANET_GLSL_KERNEL(Real)
   struct EclipseParams {  // the GLSL struct in this precision
     vec4 occluders[gpu::kEclipseMaxOccluders];
+    vec4 refracted[gpu::kEclipseMaxOccluders];
     vec4 sun;
   };
   static real acos(real x) { return std::acos(x); }
@@ -42,7 +44,11 @@ gpu::EclipseParams eclipseGpuParams(std::span<const Occluder> occluders, const g
     const Occluder& o = occluders[i];
     if (!(std::isfinite(o.radiusM) && o.radiusM >= 0.0))
       throw Error(fmt::format("occluder radius {} m must be a finite number >= 0", o.radiusM));
+    for (int c = 0; c < 3; ++c)
+      if (!(o.refracted[c] >= 0.0 && o.refracted[c] <= 1.0))
+        throw Error(fmt::format("occluder's refracted share {} is outside [0, 1]", o.refracted[c]));
     e.occluders[i] = glm::vec4(glm::vec3(toFrame * o.centreM), float(o.radiusM));
+    e.refracted[i] = glm::vec4(glm::vec3(o.refracted), 0.0f);
   }
   e.sun = glm::vec4(float(sunAngularRadiusRad), float(occluders.size()), 0.0f, 0.0f);
   return e;
@@ -54,11 +60,28 @@ float occluderSunVisibleCpu(const glm::vec3& toOccluder, float radius, const glm
   return FloatKernel().occluderSunVisible(toOccluder, radius, sun, sunRadius);
 }
 
-float eclipseSunVisibleCpu(const glm::vec3& fromCamera, const glm::vec3& sun, const gpu::EclipseParams& eclipse) {
+float eclipseSunVisibleRefractedCpu(const glm::vec3& fromCamera, const glm::vec3& sun,
+                                    const gpu::EclipseParams& eclipse, glm::vec3& refracted) {
   FloatKernel::EclipseParams e;
-  for (uint32_t i = 0; i < gpu::kEclipseMaxOccluders; ++i) e.occluders[i] = eclipse.occluders[i];
+  for (uint32_t i = 0; i < gpu::kEclipseMaxOccluders; ++i) {
+    e.occluders[i] = eclipse.occluders[i];
+    e.refracted[i] = eclipse.refracted[i];
+  }
   e.sun = eclipse.sun;
-  return FloatKernel().eclipseSunVisible(fromCamera, sun, e);
+  return FloatKernel().eclipseSunVisibleRefracted(fromCamera, sun, e, refracted);
+}
+
+float eclipseSunVisibleCpu(const glm::vec3& fromCamera, const glm::vec3& sun, const gpu::EclipseParams& eclipse) {
+  glm::vec3 refracted;
+  return eclipseSunVisibleRefractedCpu(fromCamera, sun, eclipse, refracted);
+}
+
+glm::dvec3 refractedIntoShadow(const PlanetDescription& planet) {
+  if (!planet.atmosphere.enabled) return glm::dvec3(0.0);
+  const gpu::AtmosphereParams atmosphere = makeAtmosphereParams(planet);
+  const double scaleHeight = planet.atmosphere.rayleighScaleHeightM;
+  const glm::dvec3 half = transmittanceToTop(atmosphere, scaleHeight, 0.0);  // the limb to the top, one way
+  return (2.0 * scaleHeight / planet.radiusM) * half * half;
 }
 
 double sunDiscCovered(double k, double s) { return DoubleKernel().sunDiscCovered(k, s); }

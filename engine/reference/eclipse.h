@@ -14,11 +14,22 @@
 namespace planet {
 
 // A sphere that may hide the sun: its centre relative to the camera, in the receiving body's
-// frame (metres), and its radius.
+// frame (metres), its radius, and the sunlight its air bends into its shadow
+// (refractedIntoShadow).
 struct Occluder {
   glm::dvec3 centreM{0.0};
   double radiusM = 0.0;
+  glm::dvec3 refracted{0.0};
 };
+
+// The share of the sun's irradiance (per channel) that a body's air bends into its shadow, per
+// share of the sun the body covers: 0 without air. A crude model, not a ray trace: sunlight
+// passing the limb within one Rayleigh scale height H of the ground is bent by about the angle
+// that carries it into the umbra (on Earth twice the horizontal refraction, ~1.2 degrees), and
+// that ring, of area 2πR·H, spreads what the air lets through along the tangent path,
+// T(H, horizontal)², over the shadow's cross-section πR²: 2H/R · T². Earth's: ~(6, 0.7, 0.03)·10⁻⁴,
+// red, as the Moon in Earth's umbra is (some 10⁻⁴ of its full brightness).
+glm::dvec3 refractedIntoShadow(const PlanetDescription& planet);
 
 // The block the shaders read: each occluder's centre turned into the pass's frame by `toFrame`
 // (body frame → the pass's frame), and the sun's angular radius. Throws planet::Error for more
@@ -30,6 +41,8 @@ gpu::EclipseParams eclipseGpuParams(std::span<const Occluder> occluders, const g
 float sunDiscCoveredCpu(float k, float s);
 float occluderSunVisibleCpu(const glm::vec3& toOccluder, float radius, const glm::vec3& sun, float sunRadius);
 float eclipseSunVisibleCpu(const glm::vec3& fromCamera, const glm::vec3& sun, const gpu::EclipseParams& eclipse);
+float eclipseSunVisibleRefractedCpu(const glm::vec3& fromCamera, const glm::vec3& sun,
+                                    const gpu::EclipseParams& eclipse, glm::vec3& refracted);
 
 // The same functions in double.
 double sunDiscCovered(double k, double s);

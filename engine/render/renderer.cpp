@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "reference/eclipse.h"
 #include "reference/sunlight.h"
 #include "render/luminance_pass.h"
 #include "render/ring_pass.h"
@@ -103,6 +104,7 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
   for (size_t i = 0; i < planets.size(); ++i) {
     Body body;
     body.planet = planets[i];
+    body.refracted = refractedIntoShadow(body.planet);
     // Only the camera's own body gets the patch textures (prepareScene moves them); the others
     // are seen from afar, where the vertex normals are finer than a pixel.
     TerrainSettings terrain = settings_.terrain;
@@ -298,8 +300,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     const glm::dmat3 sceneToBody = glm::transpose(body.bodyToScene);
     for (size_t j = 0; j < bodies_.size(); ++j)
       if (j != i)
-        t.occluders.push_back(
-            {sceneToBody * (view.bodies[j].positionM - view.camera.position), bodies_[j].planet.radiusM});
+        t.occluders.push_back({sceneToBody * (view.bodies[j].positionM - view.camera.position),
+                               bodies_[j].planet.radiusM, bodies_[j].refracted});
   }
   // One depth buffer: every body takes the nearest near plane. The primary body's own rule
   // (a quarter of the height above its ground) is capped by the others' clearance.

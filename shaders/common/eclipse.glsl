@@ -10,7 +10,9 @@
 // occluder inside the sun's disc: an annular eclipse), and in the penumbra one minus the lens
 // where the two discs overlap, over πρ². The discs are taken as flat, which is good to O(ρ²)
 // while ρ stays below kMaxSunAngularRadiusRad (reference/sunlight.h). Several occluders multiply
-// their visible shares (exact unless two of them overlap on the sun's disc at once).
+// their visible shares (exact unless two of them overlap on the sun's disc at once). An occluder
+// with air also bends a little reddened sunlight into its shadow (eclipseSunVisibleRefracted;
+// its share comes from the CPU, engine/reference/eclipse.h refractedIntoShadow).
 //
 // Rules (STYLE.md, definitions.glsl): `real` for every float, .x/.y/.z, an `f` suffix on every
 // literal, IN() for structs passed in. The includer provides EclipseParams
@@ -61,16 +63,27 @@ real occluderSunVisible(vec3 toOccluder, real radius, vec3 sun, real sunRadius) 
 }
 
 // The share of the sun's disc a point sees past every occluder of e; `fromCamera` is the point
-// minus the camera, in the frame of e's positions and of `sun`.
-real eclipseSunVisible(vec3 fromCamera, vec3 sun, IN(EclipseParams) e) {
+// minus the camera, in the frame of e's positions and of `sun`. `refracted` is the sunlight the
+// occluders' air bends into their shadows there, as a share of the sun's irradiance per
+// channel: each occluder's e.refracted times the share of the sun it covers.
+real eclipseSunVisibleRefracted(vec3 fromCamera, vec3 sun, IN(EclipseParams) e, OUT(vec3) refracted) {
   PRECISE real visible = 1.0f;
+  refracted = vec3(0.0f, 0.0f, 0.0f);
   uint count = uint(e.sun.y);
   for (uint i = 0u; i < count; ++i) {
     vec4 o = e.occluders[i];
     vec3 toOccluder = vec3(o.x - fromCamera.x, o.y - fromCamera.y, o.z - fromCamera.z);
-    visible = visible * occluderSunVisible(toOccluder, o.w, sun, e.sun.x);
+    real share = occluderSunVisible(toOccluder, o.w, sun, e.sun.x);
+    visible = visible * share;
+    vec4 bent = e.refracted[i];
+    refracted = refracted + vec3(bent.x, bent.y, bent.z) * (1.0f - share);
   }
   return visible;
+}
+
+real eclipseSunVisible(vec3 fromCamera, vec3 sun, IN(EclipseParams) e) {
+  vec3 refracted;
+  return eclipseSunVisibleRefracted(fromCamera, sun, e, refracted);
 }
 
 #endif

@@ -16,9 +16,12 @@ GPU_CONST uint kEclipseMaxOccluders = 8u;  // = kMaxSceneBodies (planet/scene_de
 
 struct EclipseParams {
   vec4 occluders[kEclipseMaxOccluders];  // xyz: the occluding sphere's centre minus the camera (m), w: its radius (m)
-  vec4 sun;                              // x: the sun's angular radius (rad), y: occluder count, z, w: unused
+  // rgb: the share of the sun's irradiance that the occluder's air bends into its shadow, per
+  // share of the sun it covers (refractedIntoShadow, engine/reference/eclipse.h; 0 without air), w: unused
+  vec4 refracted[kEclipseMaxOccluders];
+  vec4 sun;  // x: the sun's angular radius (rad), y: occluder count, z, w: unused
 };
-GPU_ASSERT_SIZE(EclipseParams, 144)
+GPU_ASSERT_SIZE(EclipseParams, 272)
 
 GPU_NAMESPACE_END
 

@@ -110,7 +110,7 @@ struct FrameUniforms {
   // The other bodies of a scene, which hide the sun from this one's surface (common/eclipse.glsl).
   EclipseParams eclipse;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2048 + 144)
+GPU_ASSERT_SIZE(FrameUniforms, 2048 + 272)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

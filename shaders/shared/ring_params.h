@@ -52,7 +52,7 @@ struct RingUniforms {
   RingParams ring;
   EclipseParams eclipse;  // the other bodies of a scene, which hide the sun from the ring (common/eclipse.glsl)
 };
-GPU_ASSERT_SIZE(RingUniforms, 304 + 144)
+GPU_ASSERT_SIZE(RingUniforms, 304 + 272)
 
 // ring_eval.comp (tests): evaluates the shared functions at `count` queries.
 GPU_CONST uint kRingEvalWorkgroupSize = 64u;

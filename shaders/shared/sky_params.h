@@ -113,7 +113,7 @@ struct SkyUniforms {
   // The other bodies of a scene, which hide the sun from this one's air (common/eclipse.glsl).
   EclipseParams eclipse;
 };
-GPU_ASSERT_SIZE(SkyUniforms, 656 + 144)
+GPU_ASSERT_SIZE(SkyUniforms, 656 + 272)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
