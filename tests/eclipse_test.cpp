@@ -205,8 +205,8 @@ glm::dvec3 surfacePoint(const SceneDescription& scene, const std::vector<BodySta
 }
 
 // The built-in system's documented times (system.toml, README): at the solar eclipse the
-// Moon's umbra (~1,340 km in radius on Terra) covers the documented point of Terra and the
-// ground 1,000 km from it, and ground 3,000 km away (past the penumbra's ~2,140 km) is in full
+// Moon's umbra (~1,360 km in radius on Terra) covers the documented point of Terra and the
+// ground 1,000 km from it, and ground 3,000 km away (past the penumbra's ~2,150 km) is in full
 // sun; at the lunar eclipse the whole Moon is in Terra's umbra (its centre and four points of
 // its limb), and the Moon half an orbit earlier is in full sun.
 TEST(Eclipse, TheSystemShowsBothEclipsesAtItsDocumentedTimes) {
@@ -278,9 +278,9 @@ double meanAround(const RenderResult& result, uint32_t width, int x, int y, int 
 }
 
 // The solar eclipse from 8,000 km above the umbra's centre, looking straight down: the middle
-// of the picture (the umbra, ~1,340 km in radius: 9.5 degrees of the view) is dark, in linear
+// of the picture (the umbra, ~1,360 km in radius: 9.6 degrees of the view) is dark, in linear
 // HDR and on the display, and ground ~3,000 km away (20 degrees off the middle, past the
-// penumbra's ~2,140 km) is as sunlit as the same place with the Moon elsewhere. From the ground
+// penumbra's ~2,150 km) is as sunlit as the same place with the Moon elsewhere. From the ground
 // there the sky is dark.
 TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
   const SceneDescription scene = resolveScene("system");
