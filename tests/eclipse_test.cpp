@@ -368,5 +368,67 @@ TEST_F(EclipseGpu, TheMoonInTerrasUmbraIsDark) {
   EXPECT_GE(eclipsedColour.g, eclipsedColour.b);
 }
 
+// A moon's shadow on a giant's rings (ring.frag): the moon 150,000 km sunward of a point of the
+// rings (its umbra there 610 km in radius, its penumbra 2,860 km), seen from 60,000 km in a
+// 15-degree view centred on that point (170 km a pixel). The ring there is under 10 % as bright
+// as with the moon elsewhere (what is left is the rings' fill light, which no shadow dims), and
+// 30 pixels (5,100 km) away it is as bright.
+TEST_F(EclipseGpu, AMoonsShadowFallsOnTheRings) {
+  const SceneDescription scene = parseSceneDescription(R"([scene]
+name = "ring shadow"
+[[body]]
+name = "Giant"
+preset = "giant"
+gm_m3_s2 = 3.7931e16
+[body.orbit]
+semi_major_axis_m = 1.496e11
+mean_anomaly_deg = 90
+[body.spin]
+tilt_deg = 26.7
+[body.rings]
+inner_radius_m = 7.45e7
+outer_radius_m = 1.368e8
+seed = 7
+[[body]]
+name = "Moon"
+preset = "moon"
+parent = "Giant"
+[body.orbit]
+semi_major_axis_m = 1.86e8
+mean_anomaly_deg = -53.74
+)",
+                                                       "ring-shadow.toml");
+  // The giant at (0, 1 au, 0): the sun along −y. The moon, at (1.1e8, −1.5e8, 0) from the giant,
+  // is 1.5e8 m sunward of the point 1.1e8 m along x of the ring plane (tilted about x); the
+  // view is centred on where the line from the moon away from the sun meets that plane.
+  const std::vector<BodyState> states = sceneStateAt(scene, 0.0);
+  const glm::dvec3 sun = -glm::normalize(states[1].positionM);
+  const glm::dvec3 normal = states[0].bodyToScene * glm::dvec3(0.0, 0.0, 1.0);
+  const double along = glm::dot(states[1].positionM - states[0].positionM, normal) / glm::dot(sun, normal);
+  const glm::dvec3 point = states[1].positionM - along * sun;
+  ASSERT_NEAR(glm::length(point - states[0].positionM), 1.1e8, 1e6) << "the shadow should fall mid-ring";
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.fovYDeg = 15.0;
+  Renderer renderer(context(), scene, settings);
+  SceneView view;
+  view.camera.position = point + glm::dvec3(0.0, -5.0e7, 3.0e7);
+  view.camera.forward = glm::normalize(point - view.camera.position);
+  view.camera.up =
+      glm::normalize(glm::cross(glm::cross(view.camera.forward, glm::dvec3(0.0, 0.0, 1.0)), view.camera.forward));
+  view.bodies = sceneBodyViews(states);
+  const RenderResult eclipse = renderer.renderScene(view, true);
+  std::vector<BodyState> moved = states;
+  moved[1].positionM = states[0].positionM + glm::dvec3(-1.1e8, 1.5e8, 0.0);  // on the giant's far side
+  view.bodies = sceneBodyViews(moved);
+  const RenderResult clear = renderer.renderScene(view, true);
+  writePng((testOutputDir() / "eclipse_ring.png").string(), eclipse.image);
+  const double shadowed = meanAround(eclipse, 160, 80, 45, 1), lit = meanAround(clear, 160, 80, 45, 1);
+  ASSERT_GT(lit, 0.01) << "the rings should be sunlit there without the moon";
+  EXPECT_LT(shadowed, 0.1 * lit) << shadowed << " vs " << lit;
+  EXPECT_NEAR(meanAround(eclipse, 160, 110, 45, 1) / meanAround(clear, 160, 110, 45, 1), 1.0, 0.02);
+}
+
 }  // namespace
 }  // namespace planet::test
