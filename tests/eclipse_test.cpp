@@ -20,7 +20,12 @@
 #include "reference/eclipse.h"
 #include "reference/sunlight.h"
 #include "render/renderer.h"
+#include "spv/eclipse_eval.comp.h"
 #include "test_support.h"
+#include "vk/buffer.h"
+#include "vk/commands.h"
+#include "vk/owned.h"
+#include "vk/pipeline.h"
 
 namespace planet::test {
 namespace {
@@ -56,9 +61,9 @@ double coveredByStrips(double k, double s, int strips) {
 // The penumbra's profile: for occluders smaller than, as large as and much larger than the sun
 // (the Moon seen from Terra is ~0.4 to 2 suns here, Terra from the Moon ~13), the covered share
 // at 121 separations from concentric to past first contact. The strips' own error is below
-// 1e-6 at 40,000 strips (their ends follow a square root: O(n^-1.5)); the tolerance, 1e-4 of
-// the sun's disc, is what float leaves of acos near 1 (a rounding of x by 6e-8 moves acos(x) by
-// ~6e-8 / sqrt(2 (1 − x))); double must agree to 1e-6.
+// 1e-6 at 40,000 strips (their ends follow a square root: O(n^-1.5)); float must agree to 1e-4
+// of the sun's disc (it does to 7e-7: the half chord in Heron's form, the angles from atan),
+// double to 1e-6.
 TEST(Eclipse, PenumbraProfileMatchesTheAreaOfOverlapOfTwoDiscs) {
   double worstFloat = 0.0, worstDouble = 0.0;
   for (double k : {0.25, 0.6, 0.95, 1.0, 1.05, 2.0, 13.0}) {
@@ -245,6 +250,82 @@ TEST(Eclipse, TheSystemShowsBothEclipsesAtItsDocumentedTimes) {
 // --- Pictures (lavapipe) ----------------------------------------------------------------------
 
 using EclipseGpu = GpuTest;
+
+// eclipse_eval.comp: the shared functions evaluated by the GPU at `queries`.
+std::vector<glm::vec4> evaluateOnGpu(vk::Context& context, const gpu::EclipseParams& eclipse, uint32_t mode,
+                                     const std::vector<glm::vec4>& queries, const glm::vec3& sun) {
+  vk::ComputePipeline pipeline =
+      vk::createComputePipeline(context, kSpv_eclipse_eval_comp, 3, sizeof(gpu::EclipseEvalPush), {}, 1);
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const size_t bytes = queries.size() * sizeof(glm::vec4);
+  vk::Owned<vk::Buffer> params(context,
+                               vk::createBuffer(context, sizeof(eclipse), usage, vk::MemoryUsage::DeviceLocal));
+  vk::Owned<vk::Buffer> input(context, vk::createBuffer(context, bytes, usage, vk::MemoryUsage::DeviceLocal));
+  vk::Owned<vk::Buffer> output(context, vk::createBuffer(context, bytes, usage, vk::MemoryUsage::DeviceLocal));
+  std::vector<glm::vec4> results(queries.size());
+  try {
+    vk::uploadBuffer(context, *params, &eclipse, sizeof(eclipse));
+    vk::uploadBuffer(context, *input, queries.data(), bytes);
+    const vk::Buffer* buffers[] = {&*params, &*input, &*output};
+    VkDescriptorSet set = vk::allocateStorageSet(context, pipeline, buffers);
+    gpu::EclipseEvalPush push{};
+    push.sun = glm::vec4(sun, 0.0f);
+    push.count = uint32_t(queries.size());
+    push.mode = mode;
+    vk::submitAndWait(context, [&](VkCommandBuffer cmd) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout, 0, 1, &set, 0, nullptr);
+      vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+      vkCmdDispatch(cmd, (push.count + gpu::kEclipseEvalWorkgroupSize - 1) / gpu::kEclipseEvalWorkgroupSize, 1, 1);
+      // The results are read by a copy or directly by the host.
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+    });
+    vk::readbackBuffer(context, *output, results.data(), bytes);
+  } catch (...) {
+    vk::destroyComputePipeline(context, pipeline);
+    throw;
+  }
+  vk::destroyComputePipeline(context, pipeline);
+  return results;
+}
+
+// The GLSL of eclipse.glsl against its C++ compilation: the disc overlap over the profile test's
+// grid, and the visible share and refracted light across the Moon's shadow 60,000 km behind it
+// (with Earth's air, as if the Moon had it). The GPU's asin and atan are not the C library's:
+// within 1e-4 of the sun's disc (7e-5 at worst on lavapipe, for an occluder 13 suns across,
+// whose segment multiplies the angle's error by k²), the profile test's tolerance.
+TEST_F(EclipseGpu, SharedFunctionsMatchTheCpuReference) {
+  std::vector<glm::vec4> covered;
+  for (float k : {0.25f, 0.6f, 0.95f, 1.0f, 1.05f, 2.0f, 13.0f})
+    for (int i = 0; i <= 120; ++i) covered.emplace_back(k, (1.0f + k + 0.05f) * float(i) / 120.0f, 0.0f, 0.0f);
+  const gpu::EclipseParams none = eclipseGpuParams({}, glm::dmat3(1.0), kSunAngularRadiusRad);
+  const std::vector<glm::vec4> gpuCovered = evaluateOnGpu(context(), none, gpu::kEclipseEvalCovered, covered, {});
+  double worst = 0.0;
+  for (size_t i = 0; i < covered.size(); ++i) {
+    const float cpu = sunDiscCoveredCpu(covered[i].x, covered[i].y);
+    worst = std::max(worst, double(std::abs(gpuCovered[i].x - cpu)));
+    ASSERT_NEAR(gpuCovered[i].x, cpu, 1e-4f) << "k " << covered[i].x << " s " << covered[i].y;
+  }
+  double worstVisible = 0.0;
+  const glm::dvec3 earth = refractedIntoShadow(resolvePreset("earth"));
+  const std::vector<Occluder> moon = {{{0.0, 0.0, 6.0e7}, 1737400.0, earth}};
+  const gpu::EclipseParams e = eclipseGpuParams(moon, glm::dmat3(1.0), kSunAngularRadiusRad);
+  const glm::vec3 sun(0.0f, 0.0f, 1.0f);
+  std::vector<glm::vec4> points;
+  for (int i = 0; i <= 200; ++i) points.emplace_back(3.0e6f * float(i) / 200.0f, 1.0e5f, 0.0f, 0.0f);
+  const std::vector<glm::vec4> gpuVisible = evaluateOnGpu(context(), e, gpu::kEclipseEvalVisible, points, sun);
+  for (size_t i = 0; i < points.size(); ++i) {
+    glm::vec3 refracted;
+    const float visible = eclipseSunVisibleRefractedCpu(glm::vec3(points[i]), sun, e, refracted);
+    worstVisible = std::max(worstVisible, double(std::abs(gpuVisible[i].x - visible)));
+    ASSERT_NEAR(gpuVisible[i].x, visible, 1e-4f) << "x " << points[i].x;
+    ASSERT_NEAR(gpuVisible[i].y, refracted.r, 1e-4f * float(earth.r)) << "x " << points[i].x;
+  }
+  std::printf("eclipse.glsl on the GPU: worst difference from the C++ %.2e (disc overlap), %.2e (visible share)\n",
+              worst, worstVisible);
+}
 
 // The scene view of the camera `local` on body `body` at time t, optionally turned to `target`.
 SceneView sceneView(const std::vector<BodyState>& states, double timeS, size_t body, const CameraBasis& local) {

@@ -33,13 +33,16 @@ real sunDiscCovered(real k, real s) {
   if (s <= k - 1.0f) return 1.0f;      // the occluder covers the sun: umbra
   if (s <= 1.0f - k) return k * k;     // the occluder inside the sun: antumbra (annular)
   // The lens: the circular segment of each disc beyond the chord through the two crossings,
-  // which lies x from the sun's centre and y = s − x from the occluder's.
+  // which lies x from the sun's centre and y = s − x from the occluder's; h is the half chord.
+  // h² = (1 − x)(1 + x) in factors that hold no cancellation (Heron's form), and each segment's
+  // half angle from atan(h, ·): acos near 1, where a large occluder's segment is thin, loses
+  // half the digits (and a GPU's acos more).
   PRECISE real x = (s * s + 1.0f - k * k) / (2.0f * s);
   PRECISE real y = s - x;
-  real xs = clamp(x, -1.0f, 1.0f);
-  real yk = clamp(y / k, -1.0f, 1.0f);
-  PRECISE real sunSegment = acos(xs) - xs * sqrt(max(1.0f - xs * xs, 0.0f));
-  PRECISE real occluderSegment = k * k * (acos(yk) - yk * sqrt(max(1.0f - yk * yk, 0.0f)));
+  PRECISE real h2 = (k - s + 1.0f) * (k + s - 1.0f) * (s + 1.0f - k) * (s + 1.0f + k) / (4.0f * s * s);
+  PRECISE real h = sqrt(max(h2, 0.0f));
+  PRECISE real sunSegment = atan(h, x) - x * h;
+  PRECISE real occluderSegment = k * k * atan(h, y) - y * h;
   return clamp((sunSegment + occluderSegment) / kEclipsePi, 0.0f, 1.0f);
 }
 

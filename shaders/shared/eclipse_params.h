@@ -23,6 +23,23 @@ struct EclipseParams {
 };
 GPU_ASSERT_SIZE(EclipseParams, 272)
 
+// eclipse_eval.comp (tests): evaluates the shared functions at `count` queries.
+GPU_CONST uint kEclipseEvalWorkgroupSize = 64u;
+GPU_CONST uint kEclipseEvalBindingParams = 0u;   // EclipseParams (storage, read)
+GPU_CONST uint kEclipseEvalBindingQueries = 1u;  // vec4[count] (storage, read)
+GPU_CONST uint kEclipseEvalBindingResults = 2u;  // vec4[count] (storage, written)
+GPU_CONST uint kEclipseEvalCovered = 0u;  // query x: k, y: s → result x: sunDiscCovered(k, s)
+// query xyz: a point minus the camera, the sun in the push → result x: eclipseSunVisibleRefracted, yzw: refracted
+GPU_CONST uint kEclipseEvalVisible = 1u;
+struct EclipseEvalPush {
+  vec4 sun;    // xyz: toward the sun (kEclipseEvalVisible)
+  uint count;  // queries
+  uint mode;   // kEclipseEvalCovered or kEclipseEvalVisible
+  uint pad0;
+  uint pad1;
+};
+GPU_ASSERT_SIZE(EclipseEvalPush, 32)
+
 GPU_NAMESPACE_END
 
 #endif
