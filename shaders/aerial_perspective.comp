@@ -4,7 +4,8 @@
 // the camera (single and multiple scattering) and the transmittance from the camera to the far
 // end of each of the column's kAerialSize slices (sky_aerial.glsl). One invocation marches a
 // whole column, kAerialStepsPerSlice steps per slice (common/atmosphere.glsl, scatteringStep),
-// and stops where the ray meets the ground sphere: slices past it keep the value there.
+// and stops where the ray meets the ground sphere: slices past it keep the value there. The
+// scene's other bodies darken the samples in their shadows (eclipses, common/eclipse.glsl).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/sky_params.h"
@@ -20,6 +21,12 @@ layout(set = 0, binding = kSkyTableBindingAerialTransmittance, rgba16f) uniform 
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
+// Eclipses: each sample's light is scaled by the share of the sun it sees past the scene's other
+// bodies, at its place on the column's ray (where the march starts, plus t along the ray).
+#include "common/eclipse.glsl"
+vec3 marchStart;  // local frame, from the camera
+vec3 marchDirection;
+#define SUN_VISIBLE_ALONG(t) eclipseSunVisible(marchStart + marchDirection * (t), sky.sunLocal.xyz, sky.eclipse)
 #include "atmosphere_lookup.glsl"
 #include "sky_aerial.glsl"
 
@@ -47,6 +54,8 @@ void main() {
   float h0 = altitudeAlong(R, h, mu, tStart);
   float mu0 = clamp((r * mu + tStart) / (R + h0), -1.0f, 1.0f);
   float muS0 = clamp((r * muS + tStart * nu) / (R + h0), -1.0f, 1.0f);
+  marchStart = dir * tStart;
+  marchDirection = dir;
   float phaseR = rayleighPhase(nu);
   vec3 phaseM = miePhases(a, nu);
   vec3 single = vec3(0.0f), total = vec3(0.0f), transmittance = vec3(1.0f);

@@ -12,7 +12,8 @@
 //   seen from the far side:    only light that got through the layer reaches the particles
 //                              on that face: a/π · E · μs · (1 − α), so dense bands turn dark
 //                              and thin ones glow, as Saturn's unlit rings do;
-//   both sides: the body's shadow (sun disc visible fraction) scales the sunlight, and a fill
+//   both sides: the body's shadow (sun disc visible fraction) and those of a scene's other
+//   bodies (eclipses, common/eclipse.glsl) scale the sunlight, and a fill
 //   light of frame.viewport.z · E (as terrain's ambient for airless bodies) is added.
 // α is the slant opacity along the view ray (ringSlantOpacity), so a ring seen edge-on is opaque.
 #extension GL_GOOGLE_include_directive : require
@@ -22,6 +23,8 @@
 layout(set = 0, binding = kRingBindingUniforms) uniform Uniforms { RingUniforms frame; };
 
 #include "common/rings.glsl"
+
+#include "common/eclipse.glsl"
 
 layout(location = 0) out vec4 outColor;
 
@@ -40,7 +43,7 @@ void main() {
   vec4 particles = ringSample(u, footprint, frame.ring);
   vec3 sun = frame.sun.xyz;
   float alpha = ringSlantOpacity(particles.w, ray.z / length(ray));
-  float direct = abs(sun.z) * ringPlanetShadow(body, sun, frame.ring);
+  float direct = abs(sun.z) * ringPlanetShadow(body, sun, frame.ring) * eclipseSunVisible(t * ray, sun, frame.eclipse);
   if (frame.camera.w < 0.0f) direct *= 1.0f - alpha;  // the unlit face: transmitted light only
   vec3 radiance = particles.rgb / kRingPi * frame.sun.w * (direct + frame.viewport.z);
   outColor = vec4(radiance * alpha, alpha);

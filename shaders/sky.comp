@@ -11,7 +11,10 @@
 // - the cloud layer where the ray crosses it (seed 001 §4.4: three cover images cross-faded,
 //   Elias's cover function), lit by the sun through the air, seen from above or below;
 // - the clouds' shadow on the ground (toward the sun from the drawn surface);
-// - the sun's disc, and the stars faded by the brightness of the sky in front of them.
+// - the sun's disc, and the stars faded by the brightness of the sky in front of them;
+// - eclipses (common/eclipse.glsl): the scene's other bodies hide the sun from the air and the
+//   clouds (the reference march per sample, the tables per sample of the aerial-perspective
+//   volume and, for the sky-view table, skyEclipse below).
 // Results are written back in place (each invocation reads and writes only its own pixel).
 #extension GL_GOOGLE_include_directive : require
 
@@ -34,6 +37,12 @@ layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler2DArray
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
+// Eclipses: the reference march scales each sample's light by the share of the sun it sees past
+// the scene's other bodies, at its place on the segment's ray (its start, plus t along the ray).
+#include "common/eclipse.glsl"
+vec3 marchStart;  // local frame, from the camera
+vec3 marchDirection;
+#define SUN_VISIBLE_ALONG(t) eclipseSunVisible(marchStart + marchDirection * (t), sky.sunLocal.xyz, sky.eclipse)
 #include "atmosphere_lookup.glsl"
 #include "sky_aerial.glsl"
 
@@ -235,6 +244,23 @@ vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
   return textureLod(skyView, vec2(u, v), 0.0f).rgb;
 }
 
+// The share of the sun seen by the air along a ray that met no geometry, for the sky-view table,
+// which has no place along the ray to hold an eclipse: the mean over four points of the ray's
+// stretch through the air, spread as the table's steps are (gathered toward the camera from
+// inside the air, even from above it). From inside an eclipse's shadow the whole sky darkens
+// with it (the horizon's glow from outside the shadow is missed); from orbit the limb does where
+// the shadow crosses it.
+float skyEclipse(vec3 dir, vec2 stretch, bool fromInside) {
+  if (!(stretch.y > stretch.x) || !(sky.eclipse.sun.y > 0.5f)) return 1.0f;
+  float sum = 0.0f;
+  for (uint k = 0u; k < 4u; ++k) {
+    float x = (float(k) + 0.5f) / 4.0f;
+    float t = stretch.x + (stretch.y - stretch.x) * (fromInside ? x * x : x);
+    sum += eclipseSunVisible(dir * t, sky.sunLocal.xyz, sky.eclipse);
+  }
+  return 0.25f * sum;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(sky.extent.x) || pixel.y >= int(sky.extent.y)) return;
@@ -305,8 +331,10 @@ void main() {
     if (stretches > 0u) {
       // Sunlight and sky light once, at the middle of the layer where the ray enters it.
       float muSLayer = clamp((r * muS + first.x * nu) / (R + cloudH), -1.0f, 1.0f);
-      vec3 sunLight = sunTransmittanceTable(a, cloudH, muSLayer) * a.ozoneSun.y;
-      vec3 skyLight = skyIrradianceAt(muSLayer);
+      // Eclipses: the share of the sun seen there, for the sun's light and the sky's (as on the ground).
+      float eclipse = eclipseSunVisible(dir * first.x, sun, sky.eclipse);
+      vec3 sunLight = eclipse * sunTransmittanceTable(a, cloudH, muSLayer) * a.ozoneSun.y;
+      vec3 skyLight = eclipse * skyIrradianceAt(muSLayer);
       float weightedT = 0.0f, weight = 0.0f;
       marchLayer(dir, R, h, mu, first, nu, muS, r, sunLight, skyLight, cloudLightSum, cloudTransmittance, weightedT,
                  weight);
@@ -346,6 +374,8 @@ void main() {
           transmittance *= cloudTransmittance;
         }
         uint steps = max(2u, uint(ceil(float(samples) * (t1 - t0) / total)));
+        marchStart = dir * t0;
+        marchDirection = dir;
         vec3 segmentSingle, segmentLight, segmentTransmittance;
         scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, false, segmentSingle, segmentLight, segmentTransmittance);
         inscatter += transmittance * segmentLight;
@@ -364,6 +394,7 @@ void main() {
       // Toward the sun's disc and the stars: the transmittance table from where the ray enters
       // the air (the ground case is set below).
       vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+      inscatter *= skyEclipse(dir, stretch, h < a.radii.y);
       if (!seesGround && stretch.y > stretch.x) {
         float h0 = altitudeAlong(R, h, mu, stretch.x);
         float mu0 = clamp((r * mu + stretch.x) / (R + h0), -1.0f, 1.0f);

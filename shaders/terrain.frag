@@ -18,6 +18,8 @@
 
 #include "common/rings.glsl"
 
+#include "common/eclipse.glsl"
+
 // The planet's colour scheme (ColorScheme) and whether it has polar caps, as specialization
 // constants (TerrainPass::createDrawPipeline): lavapipe runs every side of a branch, so each
 // scheme's code would cost every planet; with constants the compiler drops the others.
@@ -143,9 +145,17 @@ void main() {
     vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
     sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);
   }
+  // Other bodies of a scene hide the sun (common/eclipse.glsl); an occluder's air bends a little
+  // red light into its shadow, taken as coming from the sun.
+  vec3 refracted;
+  float eclipse = eclipseSunVisibleRefracted(-inToCamera, sun, frame.eclipse, refracted);
+  sunLight *= vec3(eclipse) + refracted;
   float muS = dot(up, sun);
   // Sky light, more on ground that faces the sky; airless bodies get a faint fill instead.
   vec3 skyLight = (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));
+  // An eclipse dims both as it dims the sun: the air above a shadowed point and the ground
+  // around it are in the same shadow (an approximation at its edge, where some comes from outside).
+  skyLight *= eclipse;
   vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight);
   outColor = vec4(radiance, 1.0f);
 }

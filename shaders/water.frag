@@ -18,6 +18,8 @@
 #include "terrain_common.glsl"
 #include "terrain_surface.glsl"
 
+#include "common/eclipse.glsl"
+
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
 layout(location = 2) in vec4 inAttributes;
@@ -119,8 +121,11 @@ void main() {
   float cosView = max(dot(normal, toCamera), 0.0f);
   float fresnel = fresnelWater(cosView);
   float muS = dot(up, sun);
-  vec3 sunLight = sunIrradianceAt(frame.planet.x, up);
-  vec3 skyLight = skyIrradianceAt(muS);
+  // Other bodies of a scene hide the sun and the sky above (as in terrain.frag).
+  vec3 refracted;
+  float eclipse = eclipseSunVisibleRefracted(-inToCamera, sun, frame.eclipse, refracted);
+  vec3 sunLight = (vec3(eclipse) + refracted) * sunIrradianceAt(frame.planet.x, up);
+  vec3 skyLight = eclipse * skyIrradianceAt(muS);
   // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);
   vec3 skyRadiance = skyLight / kAtmospherePi * mix(1.6f, 0.7f, clamp(dot(reflected, up), 0.0f, 1.0f));

@@ -6,6 +6,7 @@
 #     sunset and at night (sky, clouds, water and stars: issue 4), the first four beside the same
 #     views of the earth preset before issue 10;
 #   - the moon and mars presets from the ground, the moon from orbit;
+#   - the system (issue 8) and its eclipses (issue 23);
 #   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size);
 #   - seed 000's figures remade (issue 13): random faults after 1, 10, 100 and 1,000 steps,
 #     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes.
@@ -56,6 +57,18 @@ render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,
 render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
 render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
 render system_giant --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 20
+# Eclipses in the system (issue 23, at 640x360): the Moon's shadow on Terra from 8,000 km and
+# from 400 km inside it looking out, the Moon half inside Terra's umbra, and wholly inside it
+# at a long exposure (red with the light Terra's air bends into its shadow; system.toml).
+for eclipse in "solar:7867740:Terra:0.04,127.86,8e6,0,-90" "solar_400km:7867740:Terra:0.04,131,4e5,90,-25" \
+  "lunar:7938860:Terra:0.27,2.02,2e7 --look-at Moon --fov 10" \
+  "lunar_total:7941160:Terra:0.27,2.02,2e7 --look-at Moon --fov 10 --exposure 20000"; do
+  name=${eclipse%%:*}; rest=${eclipse#*:}; time=${rest%%:*}; camera=${rest#*:}
+  echo "gallery: $out/system_eclipse_$name.png"
+  # shellcheck disable=SC2086 # the camera and its options split into words
+  "$planet" render --size 640x360 --scene system --time "$time" --camera $camera \
+    --out "$out/system_eclipse_$name.png" > /dev/null
+done
 # Issue 11's matrix: earth, mars and the moon from orbit (8,000 km), 400 km, 10 km, 1 km and
 # 2 m above the ground below, at noon (sun 60° up) and at low sun (5°), at half size, for
 # comparison with photographs

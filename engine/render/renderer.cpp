@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
+#include "reference/eclipse.h"
 #include "reference/sunlight.h"
 #include "render/luminance_pass.h"
 #include "render/ring_pass.h"
@@ -103,6 +104,7 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
   for (size_t i = 0; i < planets.size(); ++i) {
     Body body;
     body.planet = planets[i];
+    body.refracted = refractedIntoShadow(body.planet);
     // Only the camera's own body gets the patch textures (prepareScene moves them); the others
     // are seen from afar, where the vertex normals are finer than a pixel.
     TerrainSettings terrain = settings_.terrain;
@@ -294,6 +296,12 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     t.sunIrradianceScale = sun.irradianceScale;
     t.sunAngularRadiusRad = sun.angularRadiusRad;
     t.timeS = view.timeS;
+    // The scene's other bodies, which may hide the sun from this one (eclipses).
+    const glm::dmat3 sceneToBody = glm::transpose(body.bodyToScene);
+    for (size_t j = 0; j < bodies_.size(); ++j)
+      if (j != i)
+        t.occluders.push_back({sceneToBody * (view.bodies[j].positionM - view.camera.position),
+                               bodies_[j].planet.radiusM, bodies_[j].refracted});
   }
   // One depth buffer: every body takes the nearest near plane. The primary body's own rule
   // (a quarter of the height above its ground) is capped by the others' clearance.
@@ -337,6 +345,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     ring.sunIrradiance = gpu::kSunIrradiance * bodies_[i].terrain->settings().sunIntensity * t.sunIrradianceScale;
     ring.sunAngularRadiusRad = t.sunAngularRadiusRad;
     ring.ambient = bodies_[i].terrain->settings().ambient;
+    ring.occluders = t.occluders;
     bodies_[i].rings->prepare(ring, slot);
   }
   // The sky is drawn around the camera: each body's frame, also while the terrain's LOD is frozen.
@@ -360,6 +369,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     skyView.timeS = view.timeS;
     skyView.pixelAngleRad = t.fovYRad / double(t.height);
     skyView.drawSun = i == primary;
+    skyView.occluders = t.occluders;
     bodies_[i].sky->prepare(skyView, settings_.width, settings_.height, slot);
     if (i == primary) {
       primaryViewProjection = skyView.viewProjection;

@@ -157,6 +157,7 @@ class Renderer {
     std::unique_ptr<TerrainPass> terrain;  // with its water pass
     std::unique_ptr<SkyPass> sky;
     std::unique_ptr<RingPass> rings;  // null without rings
+    glm::dvec3 refracted{0.0};        // the sunlight its air bends into its shadow (refractedIntoShadow)
     // The timing scopes its passes record in a frame, at most.
     uint32_t timingScopes() const;
   };

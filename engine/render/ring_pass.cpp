@@ -93,6 +93,7 @@ void RingPass::prepare(const RingView& view, uint32_t slot) {
   u.sun = glm::vec4(glm::vec3(sun), float(view.sunIrradiance));
   u.viewport = glm::vec4(float(1.0 / view.width), float(1.0 / view.height), float(view.ambient), 0.0f);
   u.ring = ringGpuParams(ring_, view.planetRadiusM, view.sunAngularRadiusRad);
+  u.eclipse = eclipseGpuParams(view.occluders, glm::dmat3(1.0), view.sunAngularRadiusRad);
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
   edgeOn_ = std::abs(view.cameraBody.z) < 1e-3 * view.nearPlaneM;
   slot_ = slot;

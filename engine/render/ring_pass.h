@@ -10,11 +10,13 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
 #include "reference/atmosphere_model.h"
+#include "reference/eclipse.h"
 #include "planet/ring_description.h"
 #include "reference/ring_density.h"
 #include "shared/ring_params.h"
@@ -46,6 +48,9 @@ struct RingView {
   double sunIrradiance = gpu::kSunIrradiance;  // as the terrain's (TerrainSettings::sunIntensity scales it)
   double ambient = 0.01;                       // fill light, share of the irradiance (as TerrainSettings::ambient)
   double sunAngularRadiusRad = kSunAngularRadiusRad;  // penumbrae of both shadows
+  // A scene's other bodies, which may hide the sun from the ring (eclipses): centres relative to
+  // the camera, body frame.
+  std::vector<Occluder> occluders;
 };
 
 class RingPass {

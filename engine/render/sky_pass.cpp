@@ -175,6 +175,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.sunLocal = glm::vec4(glm::vec3(view.sunLocal), float(planet_.stars.brightness));
   const bool clouds = settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled;
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
+  u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(view.localToPlanet), view.sunAngularRadiusRad);
   tables_.clouds().writeUniforms(u, view.timeS);
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);

@@ -16,6 +16,7 @@
 
 #include "planet/planet_description.h"
 #include "reference/atmosphere_model.h"
+#include "reference/eclipse.h"
 #include "shared/sky_params.h"
 #include "vk/buffer.h"
 #include "vk/image.h"
@@ -67,6 +68,9 @@ struct SkyView {
   // The sun's disc is drawn by one compose pass per frame: in a scene of several bodies, by the
   // last one (the camera's own body), after the farther bodies' atmospheres were composed.
   bool drawSun = true;
+  // A scene's other bodies, which may hide the sun from the air (eclipses): centres relative to
+  // the camera, planet frame.
+  std::vector<Occluder> occluders;
 };
 
 class SkyPass {

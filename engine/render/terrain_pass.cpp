@@ -454,6 +454,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
     u.ring = *ring_;
     u.ring.variation.w = float(view.sunAngularRadiusRad);
   }
+  u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(o.localToPlanet), view.sunAngularRadiusRad);
   u.atmosphere = sky_.atmosphere();
   u.atmosphere.radii.z = float(view.sunAngularRadiusRad);
   u.atmosphere.ozoneSun.y *= float(scale);

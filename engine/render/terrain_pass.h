@@ -21,6 +21,7 @@
 #include "planet/terrain_rebase.h"
 #include "camera/camera.h"
 #include "reference/atmosphere_model.h"
+#include "reference/eclipse.h"
 #include "render/patch_layout.h"
 #include "render/water_pass.h"
 #include "shared/render_params.h"
@@ -131,6 +132,9 @@ struct TerrainView {
   double sunIrradianceScale = 1.0;
   double sunAngularRadiusRad = kSunAngularRadiusRad;
   double timeS = 0.0;                      // animation time (waves)
+  // A scene's other bodies, which may hide the sun (eclipses): centres relative to the camera,
+  // planet frame.
+  std::vector<Occluder> occluders;
   // The near plane is 0.25 × the height above the ground, at most this: the scene renderer
   // draws several bodies into one depth buffer and gives them all the nearest body's plane.
   double maxNearPlaneM = 5.0e4;

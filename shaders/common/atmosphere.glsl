@@ -10,6 +10,11 @@
 // altitude h toward a sun of zenith cosine muS, zero where the planet is in the way (GLSL: the
 // table; C++: the integral below). An includer that defines MULTIPLE_SCATTERING(a, h, muS) (Ψ_ms
 // from the multiple-scattering table) also gets multipleScattering() along a ray.
+// An includer may define SUN_VISIBLE_ALONG(t): the share of the sun's disc that the sample at
+// distance t from a segment's start sees past other bodies (eclipses, common/eclipse.glsl);
+// scatteringStep scales both its single and its multiple scattering by it (the light scattered
+// many times comes from the air around the sample, in the same shadow where the shadow is much
+// wider than the air is high). Without it, no body hides the sun.
 //
 // Every quantity is expressed through altitudes h above the planet radius R, never through
 // differences of radii: r² − r_s² = (h − h_s)(2R + h + h_s). In float, R² = 4·10¹³ m² keeps
@@ -304,9 +309,13 @@ vec3 multipleScattering(IN(AtmosphereParams) a, real h, real mu, real muS, real 
 // medium, S · (1 − e^(−σ_t dt)) / σ_t, which stays right for the long steps of rays toward the
 // horizon. Adds to `single` and `total` (per the params' sun irradiance) through the segment's
 // transmittance so far, and moves that transmittance past the step.
+#ifndef SUN_VISIBLE_ALONG
+#define SUN_VISIBLE_ALONG(t) real(1.0f)
+#endif
 void scatteringStep(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real phaseR, vec3 phaseM, real t,
                     real dt, INOUT(vec3) single, INOUT(vec3) total, INOUT(vec3) transmittance) {
   real R = real(a.radii.x);
+  real visible = SUN_VISIBLE_ALONG(t);
   real ht = altitudeAlong(R, h, mu, t);
   real muSt = clamp(((R + h) * muS + t * nu) / (R + ht), real(-1.0f), real(1.0f));
   vec3 rayleigh = rayleighScatteringAt(a, ht);
@@ -314,7 +323,7 @@ void scatteringStep(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, 
   vec3 stepDepth = extinctionAt(a, ht) * dt;
   vec3 weight = vec3(transmittance.x * stepTransmittanceMean(stepDepth.x),
                      transmittance.y * stepTransmittanceMean(stepDepth.y),
-                     transmittance.z * stepTransmittanceMean(stepDepth.z)) * (dt * real(a.ozoneSun.y));
+                     transmittance.z * stepTransmittanceMean(stepDepth.z)) * (dt * real(a.ozoneSun.y) * visible);
   vec3 once = SUN_TRANSMITTANCE(a, ht, muSt) * (rayleigh * phaseR + mie * phaseM) * weight;
   single = single + once;
   total = total + once + (rayleigh + mie) * MULTIPLE_SCATTERING(a, ht, muSt) * weight;

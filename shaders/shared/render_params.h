@@ -9,6 +9,7 @@
 #ifndef PLANET_SHARED_RENDER_PARAMS_H
 #define PLANET_SHARED_RENDER_PARAMS_H
 
+#include "shared/eclipse_params.h"
 #include "shared/gpu_types.h"
 #include "shared/ring_params.h"
 #include "shared/scheme_params.h"
@@ -107,8 +108,10 @@ struct FrameUniforms {
   vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
   // Seed 000's schemes and seed 004's polar caps (shaders/common/color_schemes.glsl).
   SchemeParams scheme;
+  // The other bodies of a scene, which hide the sun from this one's surface (common/eclipse.glsl).
+  EclipseParams eclipse;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2048)
+GPU_ASSERT_SIZE(FrameUniforms, 2048 + 272)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

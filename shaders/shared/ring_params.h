@@ -8,6 +8,7 @@
 #ifndef PLANET_SHARED_RING_PARAMS_H
 #define PLANET_SHARED_RING_PARAMS_H
 
+#include "shared/eclipse_params.h"
 #include "shared/gpu_types.h"
 
 GPU_NAMESPACE_BEGIN
@@ -49,8 +50,9 @@ struct RingUniforms {
   vec4 sun;             // xyz: unit vector toward the sun (body frame), w: sun irradiance (gpu::kSunIrradiance units)
   vec4 viewport;        // x: 1 / width, y: 1 / height (pixels), z: fill light (share of the irradiance), w: unused
   RingParams ring;
+  EclipseParams eclipse;  // the other bodies of a scene, which hide the sun from the ring (common/eclipse.glsl)
 };
-GPU_ASSERT_SIZE(RingUniforms, 304)
+GPU_ASSERT_SIZE(RingUniforms, 304 + 272)
 
 // ring_eval.comp (tests): evaluates the shared functions at `count` queries.
 GPU_CONST uint kRingEvalWorkgroupSize = 64u;

@@ -4,6 +4,7 @@
 #ifndef PLANET_SHARED_SKY_PARAMS_H
 #define PLANET_SHARED_SKY_PARAMS_H
 
+#include "shared/eclipse_params.h"
 #include "shared/gpu_types.h"
 
 GPU_NAMESPACE_BEGIN
@@ -109,8 +110,10 @@ struct SkyUniforms {
                  // z, w: unused
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[16];
+  // The other bodies of a scene, which hide the sun from this one's air (common/eclipse.glsl).
+  EclipseParams eclipse;
 };
-GPU_ASSERT_SIZE(SkyUniforms, 656)
+GPU_ASSERT_SIZE(SkyUniforms, 656 + 272)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
