@@ -221,7 +221,7 @@ void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out
 // The sky along the whole ray from the sky-view table (black where the ray misses the air).
 vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
   vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
-  float theta = acos(clamp(dir.z, -1.0f, 1.0f));
+  float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
   if (theta < range.x) return vec3(0.0f);
   float v = unitToTexel(skyViewV(theta, range), float(kSkyViewHeight));
   // Each half of the rows (above and below the ground's horizon) is read only from its own
