@@ -357,13 +357,18 @@ void main() {
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
     vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
-    if (geometry) {
+    vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+    // Geometry past the far side of the air (another body, a ring, seen through this one's
+    // limb or from under its sky) is seen through the whole crossing, as the sky around it is:
+    // the same tables, so its outline leaves no seam in the haze. (From above, the volume's
+    // columns end halfway through a crossing that misses the ground.)
+    bool pastAir = geometry && !seesGround && stretch.y > stretch.x && tGeometry >= stretch.y;
+    if (geometry && !pastAir) {
       aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);
     } else {
       inscatter = skyViewRadiance(dir, sun, h, hGround);
-      // Toward the sun's disc and the stars: the transmittance table from where the ray enters
-      // the air (the ground case is set below).
-      vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+      // Toward the sun's disc, the stars and geometry past the air: the transmittance table
+      // from where the ray enters the air (the ground case is set below).
       if (!seesGround && stretch.y > stretch.x) {
         float h0 = altitudeAlong(R, h, mu, stretch.x);
         float mu0 = clamp((r * mu + stretch.x) / (R + h0), -1.0f, 1.0f);
