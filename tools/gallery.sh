@@ -8,7 +8,8 @@
 #   - the moon and mars presets from the ground, the moon from orbit;
 #   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size);
 #   - seed 000's figures remade (issue 13): random faults after 1, 10, 100 and 1,000 steps,
-#     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes.
+#     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes;
+#   - the system scene, and the ringed giant with its air (issue 23).
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
 out=${1:-docs/gallery}
@@ -56,6 +57,10 @@ render system_3_terra_30000km --scene system --time $t --camera Terra:6.7,162.9,
 render system_4_terra_400km --scene system --time $t --camera Terra:10,170,4e5,270,-30
 render system_5_terra_ground --scene system --time $t --camera Terra:5,172,0 --look-at Giant
 render system_giant --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 20
+# The giant's air and its rings in it (issue 23, point 4): from Terra's distance, and the limb
+# from 42,000 km with the rings passing behind it through the haze.
+render giant_rings_far --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 12 --exposure 5
+render giant_rings_limb --scene system --time 30000 --camera Giant:10,-71,4.2e7,88,-53 --fov 8 --exposure 5
 # Issue 11's matrix: earth, mars and the moon from orbit (8,000 km), 400 km, 10 km, 1 km and
 # 2 m above the ground below, at noon (sun 60° up) and at low sun (5°), at half size, for
 # comparison with photographs
