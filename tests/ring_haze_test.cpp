@@ -15,6 +15,7 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/scene_description.h"
+#include "planet/terrain_height.h"
 #include "reference/atmosphere_model.h"
 #include "reference/ring_density.h"
 #include "render/renderer.h"
@@ -359,6 +360,99 @@ TEST_F(RingHaze, TheLimbHazeFallsOffWithTheScaleHeight) {
   EXPECT_EQ(rises, 0) << "above 250 km the haze should only fade outward";
   EXPECT_LE(mismatched, compared / 20) << mismatched << " of " << compared
                                        << " limb pixels differ from the reference march by more than 10 %";
+}
+
+// The built-in system from 10 km above Terra's ground (its air, no clouds), the giant and its
+// rings in the afternoon sky (as system_5_terra_ground). Terra's atmosphere is nearer than the rings and is composed after
+// them: they write depth, so Terra's compose pass sees them as geometry past its air and puts
+// the air in front of them, the same light as the sky around plus the transmittance of the
+// ray. The rings' share of a pixel (the frame with them less the frame without) is then the
+// share without Terra's air times that transmittance (the CPU reference's, from 10 km along the
+// ray to the top). Before, the rings were faded out with the stars behind a bright sky. The
+// median over the ring's pixels must be within 0.05 of the reference (stars behind a thin part
+// of the ring are not faded with it, and a ring pixel's own edges blend with the sky).
+TEST_F(RingHaze, RingsInADaytimeSkyAreSeenThroughItsAir) {
+  SceneDescription system = resolveScene("system");
+  system.bodies.pop_back();  // the Moon, out of the picture (one body less to build)
+  const size_t giant = 0, terra = 1;
+  // Terra's radius and air over the giant preset's two smooth layers (heights within ±5 km):
+  // the ground is not what this looks at, and earth's terrain shaders take most of a minute
+  // to build four times on lavapipe.
+  {
+    PlanetDescription plain = system.bodies[giant].planet;
+    const PlanetDescription& earth = system.bodies[terra].planet;
+    plain.name = "Terra";
+    plain.radiusM = earth.radiusM;
+    plain.atmosphere = earth.atmosphere;
+    plain.stars = earth.stars;
+    system.bodies[terra].planet = plain;
+  }
+  const double timeS = 66500.0;
+  const std::vector<BodyState> states = sceneStateAt(system, timeS);
+  const PlanetDescription& world = system.bodies[terra].planet;
+  const glm::dvec3 upTerra = directionFromLatLon(5.0, 172.0);
+  const double altitude = 1.0e4;
+  SceneView view;
+  view.camera.position = states[terra].positionM + states[terra].bodyToScene * (upTerra * (world.radiusM + altitude));
+  view.camera.forward = glm::normalize(states[giant].positionM - view.camera.position);
+  const glm::dvec3 up = states[terra].bodyToScene * upTerra;
+  view.camera.up = glm::normalize(up - glm::dot(up, view.camera.forward) * view.camera.forward);
+  view.bodies = sceneBodyViews(states);
+  view.timeS = timeS;
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.fovYDeg = 20.0;
+  settings.terrain.patches = false;  // the ground is not what this looks at
+  auto render = [&](bool air, bool rings, const char* picture = nullptr) {
+    SceneDescription scene = system;
+    scene.bodies[terra].planet.atmosphere.enabled = air;
+    if (!rings) scene.bodies[giant].rings.reset();
+    Renderer renderer(context(), scene, settings);
+    RenderResult result = renderer.renderScene(view, true);
+    if (picture) writePng((testOutputDir() / picture).string(), result.image);
+    return std::move(result.hdr);
+  };
+  const std::vector<glm::vec4> airRings = render(true, true, "ring_haze_terra_sky.png");
+  const std::vector<glm::vec4> airSky = render(true, false);
+  const std::vector<glm::vec4> bareRings = render(false, true);
+  const std::vector<glm::vec4> bareSky = render(false, false);
+
+  const glm::dmat3 toGiant = glm::transpose(states[giant].bodyToScene);
+  const glm::dvec3 eye = toGiant * (view.camera.position - states[giant].positionM);
+  const double giantRadius = system.bodies[giant].planet.radiusM;
+  const gpu::RingParams ring = ringGpuParams(*system.bodies[giant].rings, giantRadius, kSunAngularRadiusRad);
+  const gpu::AtmosphereParams air = makeAtmosphereParams(world);
+  const glm::dvec3 right = glm::cross(view.camera.forward, view.camera.up);
+  const double tanHalf = std::tan(0.5 * settings.fovYDeg * std::numbers::pi / 180.0);
+  std::vector<double> offsets;
+  auto pixel = [&](const std::vector<glm::vec4>& hdr, uint32_t x, uint32_t y) {
+    const glm::vec4& t = hdr[size_t(y) * settings.width + x];
+    return glm::dvec3(t.r, t.g, t.b);
+  };
+  for (uint32_t y = 0; y < settings.height; ++y)
+    for (uint32_t x = 0; x < settings.width; ++x) {
+      const double ndcX = (x + 0.5) / settings.width * 2.0 - 1.0, ndcY = 1.0 - (y + 0.5) / settings.height * 2.0;
+      const glm::dvec3 dir = glm::normalize(view.camera.forward + ndcX * tanHalf * settings.width / settings.height * right +
+                                            ndcY * tanHalf * view.camera.up);
+      const glm::dvec3 dirGiant = toGiant * dir;
+      const glm::dvec2 hit = ringHit(eye, dirGiant);
+      if (hit.x <= 0.0) continue;
+      const glm::dvec2 closest = closestApproach(eye, dirGiant, giantRadius);
+      if (closest.y < 1.0e6 && hit.x > closest.x) continue;  // behind the giant or its limb
+      const double u = ringCoordinateCpu(ring, hit.y);
+      if (!(u > 0.05 && u < 0.95)) continue;
+      if (ringSlantOpacityCpu(ringOpacityCpu(ring, float(u), 0.01f), float(std::abs(dirGiant.z))) < 0.3f) continue;
+      const double without = luminance(pixel(bareRings, x, y) - pixel(bareSky, x, y));
+      if (!(without > 0.0)) continue;
+      const double with = luminance(pixel(airRings, x, y) - pixel(airSky, x, y));
+      const glm::dvec3 t = transmittanceToTop(air, altitude, glm::dot(dir, up));
+      offsets.push_back(with / without - luminance(t));
+    }
+  ASSERT_GT(offsets.size(), 100u) << "the rings should fill part of the view";
+  std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+  EXPECT_NEAR(offsets[offsets.size() / 2], 0.0, 0.05)
+      << "the rings' light through Terra's air should be their light times its transmittance";
 }
 
 }  // namespace
