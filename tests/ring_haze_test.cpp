@@ -149,14 +149,14 @@ TEST_F(RingHaze, ARingInFrontOfTheDiscIsNotHazedByTheAirBehindIt) {
   const glm::dvec3 eye = 3.0e8 * (std::cos(elevation) * sunFlat + std::sin(elevation) * glm::dvec3(0.0, 0.0, 1.0));
   const GiantCamera camera = lookAt(eye, glm::dvec3(0.0), {0.0, 0.0, 1.0}, 200, 120, 36.0);
   const double thick = 100.0;
-  const std::vector<glm::vec4> airRings = renderGiant(context(), scene, camera, true, true, SkyMode::Tables,
-                                                      "ring_haze_front.png", thick);
+  const std::vector<glm::vec4> airRings =
+      renderGiant(context(), scene, camera, true, true, SkyMode::Tables, "ring_haze_front.png", thick);
   const std::vector<glm::vec4> bareRings = renderGiant(context(), scene, camera, false, true);
-  const std::vector<glm::vec4> airDisc = renderGiant(context(), scene, camera, true, false, SkyMode::Tables, nullptr, thick);
+  const std::vector<glm::vec4> airDisc =
+      renderGiant(context(), scene, camera, true, false, SkyMode::Tables, nullptr, thick);
   const std::vector<glm::vec4> bareDisc = renderGiant(context(), scene, camera, false, false);
 
-  const gpu::RingParams ring =
-      ringGpuParams(*scene.description.bodies[0].rings, scene.radius, kSunAngularRadiusRad);
+  const gpu::RingParams ring = ringGpuParams(*scene.description.bodies[0].rings, scene.radius, kSunAngularRadiusRad);
   auto coordinate = [&](uint32_t x, uint32_t y) {
     const glm::dvec2 hit = ringHit(eye, camera.ray(x, y));
     return hit.x > 0.0 ? ringCoordinateCpu(ring, hit.y) : -1.0;
@@ -178,8 +178,8 @@ TEST_F(RingHaze, ARingInFrontOfTheDiscIsNotHazedByTheAirBehindIt) {
       ++inside;
       const double footprint = std::abs(coordinate(x + 1, y) - coordinate(x - 1, y)) / 2.0 +
                                std::abs(coordinate(x, y + 1) - coordinate(x, y - 1)) / 2.0;
-      const float alpha = ringSlantOpacityCpu(ringOpacityCpu(ring, float(u), float(std::min(footprint, 1.0))),
-                                              float(std::abs(dir.z)));
+      const float alpha =
+          ringSlantOpacityCpu(ringOpacityCpu(ring, float(u), float(std::min(footprint, 1.0))), float(std::abs(dir.z)));
       maxAlpha = std::max(maxAlpha, double(alpha));
       if (alpha < 0.3f) continue;
       const glm::dvec3 withAir = at(airRings, camera, x, y), without = at(bareRings, camera, x, y);
@@ -199,8 +199,8 @@ TEST_F(RingHaze, ARingInFrontOfTheDiscIsNotHazedByTheAirBehindIt) {
       ++checked;
       failed += off ? 1 : 0;
     }
-  ASSERT_GT(checked, 200) << "the view should put dense ring in front of the disc (" << inFront << " ring pixels in front, "
-                          << inside << " inside the annulus, densest " << maxAlpha << ")";
+  ASSERT_GT(checked, 200) << "the view should put dense ring in front of the disc (" << inFront
+                          << " ring pixels in front, " << inside << " inside the annulus, densest " << maxAlpha << ")";
   // The air must matter on the disc itself, or the comparison shows nothing (the largest
   // relative change of a channel, averaged).
   EXPECT_GT(airChange / checked, 0.3) << "the air should change the disc behind the ring";
@@ -237,8 +237,8 @@ TEST_F(RingHaze, ARingBehindTheLimbIsDimmedByTheGrazingPathsTransmittance) {
   }
   const glm::dvec3 eye = eyeAt(0.5 * (low + high));
   const GiantCamera camera = lookAt(eye, target, {0.0, 0.0, 1.0}, 160, 160, 0.6);
-  const std::vector<glm::vec4> airRings = renderGiant(context(), scene, camera, true, true, SkyMode::Tables,
-                                                      "ring_haze_limb.png");
+  const std::vector<glm::vec4> airRings =
+      renderGiant(context(), scene, camera, true, true, SkyMode::Tables, "ring_haze_limb.png");
   const std::vector<glm::vec4> airSky = renderGiant(context(), scene, camera, true, false);
   const std::vector<glm::vec4> bareRings = renderGiant(context(), scene, camera, false, true);
   const std::vector<glm::vec4> bareSky = renderGiant(context(), scene, camera, false, false);
@@ -299,8 +299,8 @@ TEST_F(RingHaze, TheLimbHazeFallsOffWithTheScaleHeight) {
   const glm::dvec3 eye = 3.0e8 * across;
   const glm::dvec3 towardSun = glm::normalize(sun - glm::dot(sun, across) * across);
   const double d = glm::length(eye);
-  const glm::dvec3 limb =
-      scene.radius * scene.radius / d * (eye / d) + scene.radius * std::sqrt(1.0 - std::pow(scene.radius / d, 2.0)) * towardSun;
+  const glm::dvec3 limb = scene.radius * scene.radius / d * (eye / d) +
+                          scene.radius * std::sqrt(1.0 - std::pow(scene.radius / d, 2.0)) * towardSun;
   const GiantCamera camera = lookAt(eye, limb, towardSun, 120, 160, 0.6);
   const std::vector<glm::vec4> tables =
       renderGiant(context(), scene, camera, true, false, SkyMode::Tables, "ring_haze_giant_limb.png");
@@ -363,14 +363,13 @@ TEST_F(RingHaze, TheLimbHazeFallsOffWithTheScaleHeight) {
 }
 
 // The built-in system from 10 km above Terra's ground (its air, no clouds), the giant and its
-// rings in the afternoon sky (as system_5_terra_ground). Terra's atmosphere is nearer than the rings and is composed after
-// them: they write depth, so Terra's compose pass sees them as geometry past its air and puts
-// the air in front of them, the same light as the sky around plus the transmittance of the
-// ray. The rings' share of a pixel (the frame with them less the frame without) is then the
-// share without Terra's air times that transmittance (the CPU reference's, from 10 km along the
-// ray to the top). Before, the rings were faded out with the stars behind a bright sky. The
-// median over the ring's pixels must be within 0.05 of the reference (stars behind a thin part
-// of the ring are not faded with it, and a ring pixel's own edges blend with the sky).
+// rings in the afternoon sky (as system_5_terra_ground). Terra's atmosphere is nearer than the rings and is composed
+// after them: they write depth, so Terra's compose pass sees them as geometry past its air and puts the air in front of
+// them, the same light as the sky around plus the transmittance of the ray. The rings' share of a pixel (the frame with
+// them less the frame without) is then the share without Terra's air times that transmittance (the CPU reference's,
+// from 10 km along the ray to the top). Before, the rings were faded out with the stars behind a bright sky. The median
+// over the ring's pixels must be within 0.05 of the reference (stars behind a thin part of the ring are not faded with
+// it, and a ring pixel's own edges blend with the sky).
 TEST_F(RingHaze, RingsInADaytimeSkyAreSeenThroughItsAir) {
   SceneDescription system = resolveScene("system");
   system.bodies.pop_back();  // the Moon, out of the picture (one body less to build)
@@ -433,8 +432,9 @@ TEST_F(RingHaze, RingsInADaytimeSkyAreSeenThroughItsAir) {
   for (uint32_t y = 0; y < settings.height; ++y)
     for (uint32_t x = 0; x < settings.width; ++x) {
       const double ndcX = (x + 0.5) / settings.width * 2.0 - 1.0, ndcY = 1.0 - (y + 0.5) / settings.height * 2.0;
-      const glm::dvec3 dir = glm::normalize(view.camera.forward + ndcX * tanHalf * settings.width / settings.height * right +
-                                            ndcY * tanHalf * view.camera.up);
+      const glm::dvec3 dir =
+          glm::normalize(view.camera.forward + ndcX * tanHalf * settings.width / settings.height * right +
+                         ndcY * tanHalf * view.camera.up);
       const glm::dvec3 dirGiant = toGiant * dir;
       const glm::dvec2 hit = ringHit(eye, dirGiant);
       if (hit.x <= 0.0) continue;

@@ -48,7 +48,8 @@ RingPass::RingPass(vk::Context& context, const RingDescription& ring, VkFormat c
   for (vk::Owned<vk::Buffer>& buffer : uniforms_)
     buffer = {context, vk::createBuffer(context, sizeof(gpu::RingUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                         vk::MemoryUsage::Upload)};
-  setLayout_ = {context, vk::createSetLayout(context, bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)};
+  setLayout_ = {context,
+                vk::createSetLayout(context, bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)};
   pool_ = {context, vk::createDescriptorPool(context, bindings, vk::kFramesInFlight)};
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     sets_[slot] = vk::allocateSet(context, pool_.get(), setLayout_.get());
