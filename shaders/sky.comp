@@ -230,7 +230,7 @@ void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out
 // The sky along the whole ray from the sky-view table (black where the ray misses the air).
 vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
   vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
-  float theta = acos(clamp(dir.z, -1.0f, 1.0f));
+  float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
   if (theta < range.x) return vec3(0.0f);
   float v = unitToTexel(skyViewV(theta, range), float(kSkyViewHeight));
   // Each half of the rows (above and below the ground's horizon) is read only from its own
@@ -387,13 +387,18 @@ void main() {
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
     vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
-    if (geometry) {
+    vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+    // Geometry past the far side of the air (another body, a ring, seen through this one's
+    // limb or from under its sky) is seen through the whole crossing, as the sky around it is:
+    // the same tables, so its outline leaves no seam in the haze. (From above, the volume's
+    // columns end halfway through a crossing that misses the ground.)
+    bool pastAir = geometry && !seesGround && stretch.y > stretch.x && tGeometry >= stretch.y;
+    if (geometry && !pastAir) {
       aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);
     } else {
       inscatter = skyViewRadiance(dir, sun, h, hGround);
-      // Toward the sun's disc and the stars: the transmittance table from where the ray enters
-      // the air (the ground case is set below).
-      vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+      // Toward the sun's disc, the stars and geometry past the air: the transmittance table
+      // from where the ray enters the air (the ground case is set below).
       inscatter *= skyEclipse(dir, stretch, h < a.radii.y);
       if (!seesGround && stretch.y > stretch.x) {
         float h0 = altitudeAlong(R, h, mu, stretch.x);

@@ -274,14 +274,20 @@ tilt_deg = 26.7
   const glm::dvec3 pole = states[0].bodyToScene * glm::dvec3(0.0, 0.0, 1.0);
   view.camera.up = glm::normalize(pole - glm::dot(pole, view.camera.forward) * view.camera.forward);
   view.bodies = sceneBodyViews(states);
-  // The same view with and without the rings: the giant's colours cancel pixel by pixel.
+  // The same view with and without the rings: the giant's colours cancel pixel by pixel. Its
+  // air is left out: the light the air scatters is not shadowed by the rings (the sky pass does
+  // not know them), and this is about the surface's shadow.
   std::vector<glm::vec4> withRings, without;
   {
-    Renderer renderer(context(), scene, settings);
+    SceneDescription airless = scene;
+    airless.bodies[0].planet.atmosphere.enabled = false;
+    Renderer renderer(context(), airless, settings);
     withRings = renderer.renderScene(view, true).hdr;
   }
   {
-    Renderer renderer(context(), sceneFrom(giant), settings);
+    SceneDescription airless = sceneFrom(giant);
+    airless.bodies[0].planet.atmosphere.enabled = false;
+    Renderer renderer(context(), airless, settings);
     without = renderer.renderScene(view, true).hdr;
   }
 

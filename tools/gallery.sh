@@ -9,7 +9,8 @@
 #   - the system (issue 8) and its eclipses (issue 23);
 #   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size);
 #   - seed 000's figures remade (issue 13): random faults after 1, 10, 100 and 1,000 steps,
-#     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes.
+#     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes;
+#   - the system scene, and the ringed giant with its air (issue 23).
 # Usage: tools/gallery.sh [OUTPUT_DIR] [WIDTHxHEIGHT]   (run from the repository root after a build)
 set -eu
 out=${1:-docs/gallery}
@@ -69,6 +70,10 @@ for eclipse in "solar:7867740:Terra:0.04,127.86,8e6,0,-90" "solar_400km:7867740:
   "$planet" render --size 640x360 --scene system --time "$time" --camera $camera \
     --out "$out/system_eclipse_$name.png" > /dev/null
 done
+# The giant's air and its rings in it (issue 23, point 4): from Terra's distance, and the limb
+# from 42,000 km with the rings passing behind it through the haze.
+render giant_rings_far --scene system --time 30000 --camera Terra:89,0,3e7 --look-at Giant --fov 12 --exposure 5
+render giant_rings_limb --scene system --time 30000 --camera Giant:10,-71,4.2e7,88,-53 --fov 8 --exposure 5
 # Issue 11's matrix: earth, mars and the moon from orbit (8,000 km), 400 km, 10 km, 1 km and
 # 2 m above the ground below, at noon (sun 60° up) and at low sun (5°), at half size, for
 # comparison with photographs

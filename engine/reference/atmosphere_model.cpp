@@ -53,6 +53,7 @@ struct AtmosphereKernel {
 
   static real cos(real x) { return std::cos(x); }
   static real acos(real x) { return std::acos(x); }
+  static real atan(real y, real x) { return std::atan2(y, x); }
 
   // The sun's transmittance with the planet's shadow: zero once the sun is below the horizon
   // of altitude h (the GPU softens this edge over the sun's disc; the reference is sharp, except

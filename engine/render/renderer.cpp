@@ -114,13 +114,13 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
         std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
     body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky);
     if (rings[i]) {
-      body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat);
+      body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat, body.skyTables.get());
       const gpu::RingParams shadow = ringGpuParams(*rings[i], body.planet.radiusM, kSunAngularRadiusRad);
       body.terrain->setRingShadow(&shadow);
     }
     bodies_.push_back(std::move(body));
   }
-  composeOrder_ = {0};
+  composeOrder_ = {ComposeStep{0, false}};
 }
 
 Renderer::~Renderer() = default;
@@ -316,20 +316,30 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
   const TerrainFrameInfo& frame = bodies_[primary].terrain->prepare(views[primary], slot);
   prepared.terrain = frame;
   const double nearPlane = frame.nearPlaneM;
-  std::vector<std::pair<double, size_t>> farther;  // (distance, body) of the other bodies with air
+  std::vector<std::pair<double, size_t>> farther;  // (distance, body) of the other bodies with air or rings
   for (size_t i = 0; i < bodies_.size(); ++i) {
     if (i == primary) continue;
     views[i].maxNearPlaneM = nearPlane;
     bodies_[i].terrain->prepare(views[i], slot);
-    if (bodies_[i].planet.atmosphere.enabled) farther.emplace_back(glm::length(views[i].camera.position), i);
+    if (bodies_[i].planet.atmosphere.enabled || bodies_[i].rings)
+      farther.emplace_back(glm::length(views[i].camera.position), i);
   }
   std::sort(farther.begin(), farther.end(), std::greater<>());
   // Every body's view shares the camera's projection (the frames differ by rotations only).
   const glm::dmat4 projection =
       reversedZPerspective(views[primary].fovYRad, double(settings_.width) / double(settings_.height), nearPlane);
+  // Far to near by the bodies' centres, each body's rings right after its atmosphere: a ring is
+  // then drawn over every atmosphere behind it and under every nearer one, and applies its own
+  // body's air in front of it itself (shaders/ring.frag). The camera's own body comes last
+  // (its compose draws the sun and fades the stars). A ring that reaches past a nearer body
+  // (a moon inside it) is ordered as its body's centre is: the whole ring behind that body's air.
   composeOrder_.clear();
-  for (const auto& [distance, i] : farther) composeOrder_.push_back(i);
-  composeOrder_.push_back(primary);
+  for (const auto& [distance, i] : farther) {
+    if (bodies_[i].planet.atmosphere.enabled) composeOrder_.push_back({i, false});
+    if (bodies_[i].rings) composeOrder_.push_back({i, true});
+  }
+  composeOrder_.push_back({primary, false});
+  if (bodies_[primary].rings) composeOrder_.push_back({primary, true});
 
   for (size_t i = 0; i < bodies_.size(); ++i) {
     if (!bodies_[i].rings) continue;
@@ -346,12 +356,19 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     ring.sunAngularRadiusRad = t.sunAngularRadiusRad;
     ring.ambient = bodies_[i].terrain->settings().ambient;
     ring.occluders = t.occluders;
+    ring.sunIrradianceScale = t.sunIrradianceScale;
+    // As the sky pass's ground sphere (SkyPass::prepare): the radius sphere under a sea, else
+    // the deepest terrain when that is below it.
+    const PlanetDescription& planet = bodies_[i].planet;
+    ring.groundSphereM = planet.hasOcean ? 0.0 : std::min(bodies_[i].terrain->lowestSurfaceM(), 0.0);
     bodies_[i].rings->prepare(ring, slot);
   }
   // The sky is drawn around the camera: each body's frame, also while the terrain's LOD is frozen.
   glm::dmat4 primaryViewProjection(1.0);
   glm::dmat3 primaryPlanetToLocal(1.0);
-  for (size_t i : composeOrder_) {
+  for (const ComposeStep& step : composeOrder_) {
+    if (step.rings) continue;
+    const size_t i = step.body;
     const TerrainFrameInfo& bodyFrame = bodies_[i].terrain->frame();
     const TerrainView& t = views[i];
     const glm::dmat3 planetToLocal = glm::transpose(bodyFrame.viewOrientation.localToPlanet);
@@ -408,7 +425,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-  // The stars, the ground, the sea and the rings each in a render pass of their own over the
+  // The stars, the ground and the sea each in a render pass of their own over the
   // same targets, so that each has a timing scope of its own. Lavapipe shades a draw's vertices
   // when it executes the draw command but its fragments when the render pass's tiles are
   // flushed, and writes a timestamp when its rasterizer reaches it in the tiles of the pass it
@@ -426,12 +443,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
     sections.emplace_back("water", [&] {
       for (Body& body : bodies_) body.terrain->recordWaterDraw(cmd, nullptr);
     });
-  // Rings last: they blend over whatever the depth test lets them cover and write no depth.
-  if (std::any_of(bodies_.begin(), bodies_.end(), [](const Body& body) { return bool(body.rings); }))
-    sections.emplace_back("rings", [&] {
-      for (Body& body : bodies_)
-        if (body.rings) body.rings->recordDraw(cmd, nullptr);
-    });
+  // The rings come later, between the compose passes (composeOrder_).
   if (timer) timer->begin(cmd, sections.front().first);
   for (size_t k = 0; k < sections.size(); ++k) {
     VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -463,13 +475,21 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-  for (size_t k = 0; k < composeOrder_.size(); ++k) {
+  // The atmospheres and the rings, far to near (prepareFrame's order).
+  bool composed = false;  // the last step was a compose pass
+  for (const ComposeStep& step : composeOrder_) {
+    if (step.rings) {
+      recordRings(cmd, *bodies_[step.body].rings, timer);
+      composed = false;
+      continue;
+    }
     // Each compose reads the colour the previous one wrote (a nearer atmosphere over a farther one's).
-    if (k > 0)
+    if (composed)
       vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    bodies_[composeOrder_[k]].sky->recordCompose(cmd, timer);
+    bodies_[step.body].sky->recordCompose(cmd, timer);
+    composed = true;
   }
   // Eye adaptation measures the composed frame, before the tonemap applies what it found.
   const double exposureStep = exposureReset_ ? -1.0 : exposureStepS_;
@@ -488,6 +508,38 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   beginRendering(cmd, extent, &colorAttachment, nullptr);
   tonemap_->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
+}
+
+void Renderer::recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* timer) {
+  vk::Image& hdr = *hdr_;
+  vk::Image& depth = *depth_;
+  // Between compose passes: the draw blends over what the composes wrote, and tests and writes
+  // the depth they sampled.
+  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
+                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = hdr.view;
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depthAttachment = color;
+  depthAttachment.imageView = depth.view;
+  depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  beginRendering(cmd, {settings_.width, settings_.height}, &color, &depthAttachment);
+  rings.recordDraw(cmd, timer);
+  vkCmdEndRendering(cmd);
+  // Back for the next compose pass (or the luminance and tonemap passes, through the barrier
+  // after the last step): it reads and writes the colour and samples the depth the draw wrote.
+  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
 RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {

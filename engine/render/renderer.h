@@ -171,6 +171,9 @@ class Renderer {
                         uint32_t slot);
   static CameraPose raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised);
   RenderResult finishFrame(const Prepared& prepared, bool readHdr);
+  // One ring draw between compose passes: the HDR colour and depth from their compute layouts
+  // to attachments and back.
+  void recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* timer);
   // The one-planet calls (prepare, render) on a renderer of one body: throws otherwise.
   void checkOnePlanet(const char* call, const char* sceneCall) const;
   SceneView onePlanetView(const CameraPose& camera, const glm::dvec3& sunPlanet, double timeS) const;
@@ -183,7 +186,13 @@ class Renderer {
   RenderSettings settings_;
   std::vector<Body> bodies_;
   size_t primary_ = 0;
-  std::vector<size_t> composeOrder_;  // bodies whose compose pass runs, far to near (the primary last)
+  // What is laid over the opaque frame after its render pass, far to near (Renderer::record):
+  // a body's atmosphere (its compose pass), or its rings.
+  struct ComposeStep {
+    size_t body = 0;
+    bool rings = false;  // the body's ring draw, else its compose pass
+  };
+  std::vector<ComposeStep> composeOrder_;  // the primary's compose (and rings) last
   std::unique_ptr<StarPass> stars_;   // null when no preset has stars
   std::unique_ptr<LuminancePass> luminance_;  // before the tonemap, which reads its exposure
   std::unique_ptr<TonemapPass> tonemap_;

@@ -2,7 +2,10 @@
 // equatorial plane whose opacity and colour come from 1D noise of the radius
 // (shaders/common/rings.glsl), lit by the sun from either side, shadowed by the body, drawn
 // transparent (premultiplied "over") into the HDR colour target after the opaque bodies: depth
-// tested against them, no depth written, no face culled.
+// tested against them, no face culled, its depth written where it is not nearly clear
+// (kRingMinAlpha). With the body's sky tables it also applies the body's air that lies between
+// the camera and the ring (shaders/ring.frag explains why that composes right when the ring is
+// drawn after that atmosphere).
 //
 // The ring's own shadow on the body is ringShadow in shaders/common/rings.glsl (CPU:
 // ringShadowCpu, reference/ring_density.h), for the body's shader to call with the same
@@ -31,6 +34,8 @@ class GpuTimer;
 
 namespace planet {
 
+class SkyTables;
+
 // One frame's view of the ring, in the ringed body's frame (the ring lies in its plane z = 0,
 // centred on the origin).
 struct RingView {
@@ -51,6 +56,11 @@ struct RingView {
   // A scene's other bodies, which may hide the sun from the ring (eclipses): centres relative to
   // the camera, body frame.
   std::vector<Occluder> occluders;
+  // The body's air (a pass made with sky tables of a body with an atmosphere): the sun at the
+  // body's distance as a share of the tables' irradiance (as SkyView::sunIrradianceScale), and
+  // the sphere (m above planetRadiusM) where a ray that passes the limb meets the ground.
+  double sunIrradianceScale = 1.0;
+  double groundSphereM = 0.0;
 };
 
 class RingPass {
@@ -60,8 +70,11 @@ class RingPass {
 
   // Validates the description and creates the per-slot uniform buffers and the pipeline, which
   // is compatible with a dynamic-rendering scope of colorFormat and depthFormat (VK_FORMAT_UNDEFINED:
-  // none; then nothing hides the ring).
-  RingPass(vk::Context& context, const RingDescription& ring, VkFormat colorFormat, VkFormat depthFormat);
+  // none; then nothing hides the ring). `air` (optional; must outlive the pass, built before the
+  // first draw): the ringed body's sky tables; when its atmosphere is enabled, the ring is seen
+  // through the part of it in front (ring_air.frag), else the air is left out.
+  RingPass(vk::Context& context, const RingDescription& ring, VkFormat colorFormat, VkFormat depthFormat,
+           const SkyTables* air = nullptr);
 
   // CPU half of a frame: the uniforms, in double until they are camera-relative, into frame slot
   // `slot`'s host-visible buffer (< vk::kFramesInFlight): call it while no frame recorded for
@@ -76,6 +89,8 @@ class RingPass {
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
 
   const RingDescription& description() const { return ring_; }
+  // Whether the pass applies the body's air (made with tables of a body with an atmosphere).
+  bool hasAir() const { return air_ != nullptr; }
   // The last prepared frame's block (ring: ringGpuParams of the description and the view).
   const gpu::RingUniforms& uniforms() const { return uniformData_; }
   // Whether the last recordDraw drew anything.
@@ -84,6 +99,7 @@ class RingPass {
  private:
   vk::Context& context_;
   RingDescription ring_;
+  const SkyTables* air_ = nullptr;  // null: no air to apply
   // In the order of creation (destroyed in reverse).
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
   vk::Owned<VkDescriptorSetLayout> setLayout_;

@@ -397,12 +397,15 @@ void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real h
 vec2 skyViewZenithRange(IN(AtmosphereParams) a, real h, real hGround) {
   real R = real(a.radii.x);
   real top = real(a.radii.y);
-  real r = R + h;
   real hg = min(hGround, h);
-  real horizonMu = -sqrt(max((h - hg) * (real(2.0f) * R + h + hg), real(0.0f))) / r;
+  // The angles as atan(sin, cos) of the tangent rays (both scaled by r), not acos of their
+  // cosines: from far away the whole range is ~10⁻³ rad next to θ ≈ π, where acos of a float
+  // (lavapipe's approximation especially) may be off by ~10⁻⁵ rad, kilometres of tangent
+  // altitude at the limb.
+  real horizonCos = -sqrt(max((h - hg) * (real(2.0f) * R + h + hg), real(0.0f)));
   real start = real(0.0f);
-  if (h > top) start = acos(-sqrt((h - top) * (real(2.0f) * R + h + top)) / r);
-  return vec2(start, acos(horizonMu));
+  if (h > top) start = atan(R + top, -sqrt((h - top) * (real(2.0f) * R + h + top)));
+  return vec2(start, atan(R + hg, horizonCos));
 }
 
 real skyViewV(real theta, vec2 range) {

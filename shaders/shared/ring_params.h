@@ -10,10 +10,20 @@
 
 #include "shared/eclipse_params.h"
 #include "shared/gpu_types.h"
+#include "shared/sky_params.h"
 
 GPU_NAMESPACE_BEGIN
 
 GPU_CONST uint kRingBindingUniforms = 0u;  // uniform RingUniforms (set 0, vertex + fragment)
+// The ringed body's air (ring_air.frag only: ring.frag built with RING_AIR), fragment stage:
+GPU_CONST uint kRingBindingTransmittance = 1u;       // sampler2D: the body's transmittance table
+GPU_CONST uint kRingBindingMultipleScattering = 2u;  // sampler2D: the body's multiple-scattering table
+// Fragments less opaque than this are discarded: they write neither colour nor depth, so the
+// gaps and the faint edges leave the sky (and what a nearer atmosphere composes over it) as it is.
+GPU_CONST float kRingMinAlpha = 1.0f / 512.0f;
+// Steps of the march through the ringed body's air in front of a ring fragment (ring_air.frag;
+// as many as a sky-view texel's ray, kSkyViewSteps, spends on a whole ray).
+GPU_CONST uint kRingAirSteps = 24u;
 
 // The annulus is drawn as kRingSegments quads between a polygon inside the inner circle and
 // one around the outer circle; the fragment shader finds each pixel's exact radius, so the
@@ -51,8 +61,13 @@ struct RingUniforms {
   vec4 viewport;        // x: 1 / width, y: 1 / height (pixels), z: fill light (share of the irradiance), w: unused
   RingParams ring;
   EclipseParams eclipse;  // the other bodies of a scene, which hide the sun from the ring (common/eclipse.glsl)
+  // The ringed body's atmosphere (ring_air.frag), its sun irradiance and disc for this frame;
+  // radii.w = 0 without air.
+  AtmosphereParams atmosphere;
+  vec4 air;  // x: camera altitude above the body's radius (m), y: the ground sphere (m above the radius) that
+             // ends a ray, z, w: unused
 };
-GPU_ASSERT_SIZE(RingUniforms, 304 + 272)
+GPU_ASSERT_SIZE(RingUniforms, 304 + 272 + 112 + 16)
 
 // ring_eval.comp (tests): evaluates the shared functions at `count` queries.
 GPU_CONST uint kRingEvalWorkgroupSize = 64u;
