@@ -98,6 +98,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.terrain.heightSource = modes[m].heightSource;
     settings.terrain.limitOctaves = modes[m].limitOctaves;
     settings.terrain.patches = options.patches;
+    settings.terrain.lights = options.lights;
     settings.autoExposure = options.autoExposure;
     settings.sky.exposure = options.exposure;
     settings.sky.mode = options.skyMode;
@@ -181,6 +182,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["height"] = options.height;
   j["fov_deg"] = options.fovYDeg;
   j["patches"] = options.patches;
+  j["lights"] = options.lights;
   if (options.autoExposure)
     j["exposure"] = "auto";
   else
@@ -268,9 +270,10 @@ std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
   out += fmt::format(
-      "preset: {} (hash {:016x}), {}x{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
+      "preset: {} (hash {:016x}), {}x{}{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
       "warm-up\n",
       preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
+      options.lights ? "" : " without lights",
       options.skyMode == SkyMode::Reference ? ", reference sky" : "",
       options.autoExposure ? "auto" : fmt::format("{:g}", options.exposure), pathSource, pathKeys, pathDurationS,
       options.frames, options.warmup);

@@ -67,6 +67,7 @@ struct TerrainSettings {
   double ambient = 0.01;      // fill light, as a fraction of the sun's irradiance, added to the sky's (airless bodies)
   double sunIntensity = 1.0;  // scales the sun's irradiance (gpu::kSunIrradiance)
   bool water = true;          // draw the water sphere (planets with an ocean)
+  bool lights = true;         // city lights on the night side (planets whose preset has [lights])
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
@@ -170,6 +171,12 @@ class TerrainPass {
   void invalidatePatches();
   // The body's rings, whose shadow darkens the ground (null: none).
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
+  // City lights on the night side (planets with [lights]). The fill pipeline is specialised on
+  // them (lavapipe would run their noise on every planet), so a change rebuilds it at the next
+  // prepare(), after waiting for the device to be idle.
+  void setLightsEnabled(bool lights) { settings_.lights = lights; }
+  // Whether this frame's terrain draws lights: the setting and the planet has them.
+  bool lightsDrawn() const { return settings_.lights && planet_.lights.enabled; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).
   void setSunIntensity(double scale) { settings_.sunIntensity = scale; }
   // Fill light, as a fraction of the sun's irradiance (airless bodies).
@@ -210,6 +217,7 @@ class TerrainPass {
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
   VkPipeline createDrawPipeline(bool wireframe);
+  bool fillPipelineLights_ = false;  // the lights specialisation the fill pipeline was built with
   // The rings, tables (uploaded) and budget figures for `orientation`, with the camera
   // heightAboveGroundM above the ground.
   Lod chooseLod(const TerrainView& view, const ClipmapFrame& orientation, double heightAboveGroundM);

@@ -10,6 +10,7 @@
 #define PLANET_SHARED_RENDER_PARAMS_H
 
 #include "shared/gpu_types.h"
+#include "shared/lights_params.h"
 #include "shared/ring_params.h"
 #include "shared/scheme_params.h"
 #include "shared/sky_params.h"
@@ -106,8 +107,11 @@ struct FrameUniforms {
   vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
   // Seed 000's schemes and seed 004's polar caps (shaders/common/color_schemes.glsl).
   SchemeParams scheme;
+  // City lights on the night side (shaders/common/city_lights.glsl); drawn only where the
+  // pipeline's kSpecLights is set.
+  LightsParams lights;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2048)
+GPU_ASSERT_SIZE(FrameUniforms, 2096)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
