@@ -107,11 +107,13 @@ vec3 cloudLight(float h, float d, float muS, float phase, vec3 sunLight, vec3 sk
                     skyLight / kAtmospherePi * (0.1f + 0.9f * diffuseSky));
 }
 
-// The sky irradiance table at sun zenith cosine muS.
+// The sky irradiance table at sun zenith cosine muS, fading to none by the end of astronomical
+// twilight below its first entry (as terrain_surface.glsl's).
 vec3 skyIrradianceAt(float muS) {
   float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * 15.0f;
   uint i = min(uint(x), 14u);
-  return mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
+  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
+  return night * mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
 }
 
 // The ray's stretches inside the layer (at most two: a ray from above may dip below its bottom

@@ -20,11 +20,14 @@
 
 #include "common/eclipse.glsl"
 
+#include "common/city_lights.glsl"
+
 // The planet's colour scheme (ColorScheme) and whether it has polar caps, as specialization
 // constants (TerrainPass::createDrawPipeline): lavapipe runs every side of a branch, so each
 // scheme's code would cost every planet; with constants the compiler drops the others.
 layout(constant_id = 0) const uint kSpecScheme = 0u;
 layout(constant_id = 1) const uint kSpecPolarCaps = 0u;
+layout(constant_id = 2) const uint kSpecLights = 0u;  // 1: the planet's city lights are drawn
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
@@ -81,6 +84,28 @@ vec3 groundAlbedo(float altitude, float slope, float sinLatitude, float jitter, 
   return mix(albedo, stone, min(frame.slopes.w, 1.0f) * m.stony * d.stones);
 }
 
+// City lights (common/city_lights.glsl) on land `altitude` above sea level at unit direction
+// `direction` (planet frame), before the dusk fade. The climate is the materials' (with the
+// vertex's band noise only); coasts and valley floors come from the relief cube's mip level whose
+// texels are ~80 km wide: a coast where that neighbourhood averages below sea level (a few per
+// cent of sea in it does), a valley floor where the ground lies below its neighbourhood.
+vec3 cityLights(float altitude, float slope, float sinLatitude, float jitter, vec3 direction, float footprintM) {
+  float latitudeDeg = degrees(asin(min(abs(sinLatitude), 1.0f)));
+  float temperature = meanTemperatureC(sinLatitude, altitude) + 4.0f * jitter;
+  float moisture = moistureAt(latitudeDeg, jitter, altitude);
+  float coast = 0.0f, valley = 0.0f;
+  uint reliefSize = uint(textureSize(reliefCube, 0).x);
+  if (reliefSize > kReliefStandInSize) {
+    float radius = frame.camera.y;
+    float lod = max(log2(80000.0f / radius * float(reliefSize) / 2.0f), 0.0f);
+    float around = textureLod(reliefCube, direction, lod).w - frame.planet.x;
+    coast = 1.0f - lightsStep(-300.0f, 0.0f, around);
+    valley = lightsStep(30.0f, 250.0f, around - altitude);
+  }
+  float habitability = lightsHabitability(altitude, slope, temperature, moisture, coast, valley);
+  return frame.lights.radiance.rgb * lightsCover(frame.lights, direction, habitability, footprintM / frame.camera.y);
+}
+
 void main() {
   gl_FragDepth = gl_FragCoord.z;
   if (frame.shading.z > 0.5f) {  // wireframe debug view
@@ -94,7 +119,8 @@ void main() {
   // This pixel relative to the mesh's anchor (small floats near the camera) and its footprint
   // on the ground (the larger of its two sides, so no octave finer than the pixel shows).
   vec3 offsetPlanet = mat3(frame.localToPlanet) * (vec3(0.0f, 0.0f, frame.camera.x) - inToCamera);
-  float footprintM = max(length(dFdx(inToCamera)), length(dFdy(inToCamera)));
+  float footprintX = length(dFdx(inToCamera)), footprintY = length(dFdy(inToCamera));
+  float footprintM = max(footprintX, footprintY);
   float latitudeEdge = fwidth(inAttributes.w) * 0.63661977f;  // |latitude| / 90° per pixel (d asin ≥ d sin)
   vec3 up = normalize(inUp);
   float jitter = inAttributes.z;
@@ -102,6 +128,7 @@ void main() {
   bool ocean = frame.planet.y > 0.5f;
   vec3 sun = frame.sunLocal.xyz;
   vec3 albedo;
+  vec3 emitted = vec3(0.0f);  // city lights, before the dusk fade
   if (ocean && height < seaLevel) {
     // Under water at this pixel, though the triangle may be above sea level: the mesh is
     // coarser than the patch heights, and near a coast it often is. Pushed back to twice its
@@ -138,6 +165,12 @@ void main() {
     else
       albedo = groundAlbedo(height - seaLevel, slope, inAttributes.w, jitter, pixelM, offsetPlanet, footprintM, normal);
     if (caps) albedo = mix(albedo, frame.colorSnow.rgb, schemePolarCap(frame.scheme, inAttributes.w, colorNoise, latitudeEdge));
+    if (kSpecLights != 0u) {
+      vec3 direction = normalize(mat3(frame.localToPlanet)[2] + offsetPlanet / frame.camera.y);
+      // The pixel's area as a square (its sides' geometric mean): toward the limb the long side
+      // alone averaged whole regions into a smooth glow the short side still resolves.
+      emitted = cityLights(height - seaLevel, slope, inAttributes.w, jitter, direction, sqrt(footprintX * footprintY));
+    }
   }
   vec3 sunLight = sunIrradianceAt(height, up);
   if (frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it
@@ -151,11 +184,18 @@ void main() {
   float eclipse = eclipseSunVisibleRefracted(-inToCamera, sun, frame.eclipse, refracted);
   sunLight *= vec3(eclipse) + refracted;
   float muS = dot(up, sun);
-  // Sky light, more on ground that faces the sky; airless bodies get a faint fill instead.
-  vec3 skyLight = (skyIrradianceAt(muS) + vec3(frame.shading.w * frame.sunLocal.w)) * (0.6f + 0.4f * dot(normal, up));
+  // Sky light, more on ground that faces the sky, plus a faint fill: the light of the sunlit
+  // ground around (airless bodies have no sky light). The surroundings are lit only while the sun
+  // is up for them, so the fill sets with the sun and is gone 6° past the terminator: it lit a
+  // night side no sunlight reaches (issue 14, point 2).
+  float fill = frame.shading.w * frame.sunLocal.w * smoothstep(-0.1f, 0.0f, muS);
+  vec3 skyLight = (skyIrradianceAt(muS) + vec3(fill)) * (0.6f + 0.4f * dot(normal, up));
   // An eclipse dims both as it dims the sun: the air above a shadowed point and the ground
   // around it are in the same shadow (an approximation at its edge, where some comes from outside).
   skyLight *= eclipse;
   vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight);
+  // The lights, switched on through dusk by the sun's elevation here; the sky pass sees them
+  // through the air and the clouds as it sees the ground.
+  if (kSpecLights != 0u) radiance += emitted * lightsDuskFade(muS);
   outColor = vec4(radiance, 1.0f);
 }

@@ -82,10 +82,14 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
 }
 
 // Sky irradiance on a horizontal surface for the sun at zenith cosine muS (table on the CPU).
+// The table starts with the sun 11.5° below the horizon (muS −0.2); deeper, it fades linearly to
+// none at 18° below (muS −0.31), the end of astronomical twilight, where no sunlit air is left in
+// sight: held at its first entry, it lit every night side as if at −11.5°.
 vec3 skyIrradianceAt(float muS) {
   float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * float(kSkyIrradianceSamplesGpu - 1u);
   uint i = min(uint(x), kSkyIrradianceSamplesGpu - 2u);
-  return mix(frame.skyIrradiance[i].rgb, frame.skyIrradiance[i + 1u].rgb, x - float(i));
+  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
+  return night * mix(frame.skyIrradiance[i].rgb, frame.skyIrradiance[i + 1u].rgb, x - float(i));
 }
 
 // Irradiance from the sun through the air at altitude h with sphere normal `up` (zero on the

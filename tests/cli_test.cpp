@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/image_file.h"
 #include "test_support.h"
 
 namespace {
@@ -788,6 +790,42 @@ TEST(Cli, BenchLeadInFramesRebuildWhatARealTimeFrameRebuilds) {
   for (size_t i = 1; i < 3; ++i) {
     EXPECT_GE(apart[i], 2u) << "frame " << i;
     EXPECT_LE(realTime[i], 1u) << "frame " << i;
+  }
+}
+
+// --no-lights (issue 14): render's night side from orbit has its cities with the flag left out
+// and is dark with it (the middle of the disc, all of it more than 18° past the terminator: at
+// most 3 of 255); bench reports the flag; view and bench offer it.
+TEST(Cli, NoLightsLeavesOutTheCityLights) {
+  const std::filesystem::path on = tempDir() / "on.png", off = tempDir() / "off.png";
+  const std::string night = "render --preset earth --size 160x90 --camera 20,-30,1.2e7,0,-90 --sun 135,-60 --out ";
+  CommandResult lit = planet(night + on.string());
+  if (noDevice(lit)) GTEST_SKIP() << lit.err;
+  ASSERT_EQ(lit.exitCode, 0) << lit.err;
+  CommandResult dark = planet(night + off.string() + " --no-lights");
+  ASSERT_EQ(dark.exitCode, 0) << dark.err;
+  const planet::Rgba8Image litImage = planet::readPng(on.string()), darkImage = planet::readPng(off.string());
+  int litPixels = 0, darkMax = 0;
+  for (uint32_t y = 30; y < 60; ++y)
+    for (uint32_t x = 65; x < 95; ++x) {  // the disc's middle: about 30 pixels across of its 60
+      const size_t i = (size_t(y) * 160 + x) * 4;
+      const int a = std::max({litImage.pixels[i], litImage.pixels[i + 1], litImage.pixels[i + 2]});
+      const int b = std::max({darkImage.pixels[i], darkImage.pixels[i + 1], darkImage.pixels[i + 2]});
+      litPixels += a > b + 8 ? 1 : 0;
+      darkMax = std::max(darkMax, b);
+    }
+  EXPECT_GE(litPixels, 10);
+  EXPECT_LE(darkMax, 3);
+
+  const std::filesystem::path json = tempDir() / "bench.json";
+  CommandResult bench = planet("bench --size 32x18 --frames 1 --warmup 0 --no-patches --no-lights --path " +
+                               shortPath().string() + " --json " + json.string());
+  ASSERT_EQ(bench.exitCode, 0) << bench.err;
+  EXPECT_NE(bench.out.find("without lights"), std::string::npos) << bench.out;
+  EXPECT_FALSE(nlohmann::json::parse(readFile(json))["lights"].get<bool>());
+  for (const char* command : {"render", "bench", "view"}) {
+    CommandResult help = planet(std::string(command) + " --help");
+    EXPECT_NE(help.out.find("--no-lights"), std::string::npos) << command << "\n" << help.out;
   }
 }
 

@@ -249,9 +249,10 @@ constexpr CameraPose kValley{45.3, 83.0, 0.0, 0.0, 4.0};
 // fixed exposure against auto. With the fixed default twilight and night are near black
 // (display mean below 0.04, where 0.5 is mid-grey); auto exposure brings twilight up at least
 // four times and into view (its sky and ground at 0.1 .. 0.6), keeps noon and sunset in the
-// middle band (0.25 .. 0.6), and lifts the night too, but the largest exposure keeps it
-// darker than twilight (0.04 .. 0.15): the night ground here is lit only by the preset's fill
-// light, five stops under daylight, and would look like an overcast day at mid-grey.
+// middle band (0.25 .. 0.6), and takes the night to the largest exposure, where only the stars
+// show (0.005 .. 0.04; 0.019 today): nothing lights this mountain valley's ground at night (the
+// fill light sets with the sun, issue 14; no city lights in the mountains). Lit cities keep a
+// night in view: CityLightsKeepTheNightInView.
 TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
   const PlanetDescription earth = resolvePreset("earth");
   Renderer renderer(context(), earth, smallSettings(true));
@@ -263,7 +264,7 @@ TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
   const Case cases[] = {{"noon", 55.0, 0.25, 0.6},
                         {"sunset", 1.0, 0.25, 0.6},
                         {"twilight", -4.0, 0.1, 0.6},
-                        {"night", -30.0, 0.04, 0.15}};
+                        {"night", -30.0, 0.005, 0.04}};
   double twilightAuto = 0.0, nightAuto = 0.0;
   for (const Case& c : cases) {
     const SunPose sun{30.0, c.sunElevationDeg};
@@ -289,6 +290,26 @@ TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
     if (c.sunElevationDeg == -30.0) nightAuto = autoMean;
   }
   EXPECT_LT(nightAuto, twilightAuto);
+}
+
+// City lights (issue 14) at night under auto exposure, from 30 km over lit lowland near a coast
+// looking 30° down: the lights raise the frame's measured luminance by at least 3 stops (3.7
+// today) over the same frame without them and show at the display (mean at least 0.06; 0.093
+// today: they cover a third of the frame), where without them it is the black of a night with
+// stars (mean below 0.03; 0.003 today).
+TEST_F(ExposureGpu, CityLightsKeepTheNightInView) {
+  const PlanetDescription earth = resolvePreset("earth");
+  Renderer renderer(context(), earth, smallSettings(true));
+  const CameraPose overCities{2.0, -28.0, 3.0e4, 0.0, -30.0};
+  const SunPose night{30.0, -30.0};
+  const RenderResult lit = renderer.render(overCities, night);
+  renderer.terrain().setLightsEnabled(false);
+  const RenderResult dark = renderer.render(overCities, night);
+  writePng((testOutputDir() / "exposure_night_lights_auto.png").string(), lit.image);
+  ASSERT_TRUE(lit.exposure && dark.exposure);
+  EXPECT_GE(lit.exposure->log2Luminance - dark.exposure->log2Luminance, 3.0);
+  EXPECT_GE(displayStats(lit.image).mean, 0.06);
+  EXPECT_LT(displayStats(dark.image).mean, 0.03);
 }
 
 // Stars under auto exposure, at night over the sea looking 20° up (nothing but the night sky):

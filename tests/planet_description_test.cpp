@@ -259,6 +259,46 @@ TEST(PlanetDescription, PresetSkiesDiffer) {
   EXPECT_TRUE(moon.stars.enabled);
 }
 
+// City lights (issue 14, point 2): Earth has them, Mars and the Moon not; the table's values are
+// read, its bad values are one line naming the key, and disabled lights leave the hash alone.
+TEST(PlanetDescription, LightsTableIsOptionalReadAndChecked) {
+  const PlanetDescription earth = resolvePreset("earth");
+  EXPECT_TRUE(earth.lights.enabled);
+  EXPECT_GT(earth.lights.radianceNw, 0.0);
+  EXPECT_FALSE(resolvePreset("mars").lights.enabled);
+  EXPECT_FALSE(resolvePreset("moon").lights.enabled);
+
+  const std::string base(kMinimal);
+  const PlanetDescription plain = parsePlanetDescription(base, "x.toml");
+  EXPECT_FALSE(plain.lights.enabled);
+  const PlanetDescription lit = parsePlanetDescription(
+      base + "[lights]\nradiance_nw = 25\ngain = 1000\ncolor = [1, 0.5, 0.25]\ncoverage = 0.4\n"
+             "city_size_m = 50_000\nseed = 3\n",
+      "x.toml");
+  EXPECT_TRUE(lit.lights.enabled);  // the table alone switches them on
+  EXPECT_EQ(lit.lights.radianceNw, 25.0);
+  EXPECT_EQ(lit.lights.gain, 1000.0);
+  EXPECT_EQ(lit.lights.color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(lit.lights.coverage, 0.4);
+  EXPECT_EQ(lit.lights.citySizeM, 50000.0);
+  EXPECT_EQ(lit.lights.seed, 3u);
+  EXPECT_NE(descriptionHash(plain), descriptionHash(lit));
+  const PlanetDescription off = parsePlanetDescription(base + "[lights]\nenabled = false\nseed = 5\n", "x.toml");
+  EXPECT_FALSE(off.lights.enabled);
+  EXPECT_EQ(descriptionHash(plain), descriptionHash(off));
+
+  EXPECT_EQ(parseError(base + "[lights]\nradiance_nw = -1\n"), "x.toml:17: radiance_nw must be in [0, 10000], got -1");
+  EXPECT_EQ(parseError(base + "[lights]\ncoverage = 1.5\n"), "x.toml:17: coverage must be in [0, 1], got 1.5");
+  EXPECT_EQ(parseError(base + "[lights]\ngain = nan\n"), "x.toml:17: gain must be a finite number, got nan");
+  EXPECT_EQ(parseError(base + "[lights]\ncity_size_m = 10\n"),
+            "x.toml:17: city_size_m must be in [1000, 1e7], got 10");
+  EXPECT_EQ(parseError(base + "[lights]\ncolor = [0, 0, 0]\n"),
+            "x.toml:17: color must not be black: [0, 0, 0] has no brightness to scale");
+  EXPECT_EQ(parseError(base + "[lights]\ncolor = [1, 2, 0]\n"), "x.toml:17: color[1] must be in [0, 1], got 2");
+  EXPECT_EQ(parseError(base + "[lights]\nenabled = 1\n"), "x.toml:17: 'enabled' must be a boolean, got integer");
+  EXPECT_EQ(parseError(base + "[lights]\nbrightness = 3\n"), "x.toml:17: unknown key 'brightness' in [lights]");
+}
+
 TEST(PlanetDescription, WrongTypesNameTheKeyAndBothTypes) {
   EXPECT_EQ(parseError(edit("octaves = 4", "octaves = \"4\""), "earth.toml"),
             "earth.toml:13: 'octaves' must be an integer, got string");

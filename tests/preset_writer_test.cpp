@@ -185,6 +185,15 @@ class RandomPlanet {
     if (d.hasOcean && coin()) d.water = {value(kClarityRangeM), value(kWaveWavelengthRangeM), value(kWaveSlopeRange)};
     if (coin())
       d.stars = {coin(), uint32_t(integer(0, 4294967295)), value(kMagnitudeRange), value(kStarBrightnessRange)};
+    if (coin()) {
+      d.lights.enabled = true;
+      d.lights.radianceNw = value(kLightsRadianceRangeNw);
+      d.lights.gain = value(kLightsGainRange);
+      d.lights.color = {colorComponent(), colorComponent(), 1.0f};  // never black (an error)
+      d.lights.coverage = value(kUnitRange);
+      d.lights.citySizeM = value(kCitySizeRangeM);
+      d.lights.seed = uint32_t(integer(0, 4294967295));
+    }
     return d;
   }
 

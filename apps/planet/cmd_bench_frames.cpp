@@ -32,6 +32,7 @@ struct FrameBenchCommand {
   std::string plot;
   bool compare = false;
   bool noPatches = false;
+  bool noLights = false;
   bool printPath = false;
   std::string sky{skyModeName(SkySettings{}.mode)};
   std::vector<CLI::Option*> options;      // every option above: given any, `planet bench` runs the benchmark
@@ -80,6 +81,7 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   o.fovYDeg = cmd.fovDeg;
   o.compare = cmd.compare;
   o.patches = !cmd.noPatches;
+  o.lights = !cmd.noLights;
   const ExposureChoice exposure = parseExposure(cmd.exposure);
   o.autoExposure = exposure.automatic;
   if (!exposure.automatic) o.exposure = exposure.fixed;
@@ -164,6 +166,7 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
                      "Also fly the path with vertex-shader heights, CPU heights and octave limiting off; report each "
                      "as a ratio of median terrain time to the default's"));
   add(bench.add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)"));
+  add(bench.add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side"));
   add(addSkyModeOption(bench, cmd->sky));
   add(bench.add_flag("--print-path", cmd->printPath, "Print the camera path in the --path format and exit"));
   auto givenOption = [cmd] {

@@ -129,6 +129,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.sky.clouds = !cmd.noClouds;
   settings.sky.mode = checkSkyMode(cmd.sky);
   settings.terrain.water = !cmd.noWater;
+  settings.terrain.lights = !cmd.noLights;
   if (sub.count("--path")) return runVideoRender(global, cmd, sub, settings);
   for (const char* option : {"--frames", "--fps", "--path-body"})
     if (sub.count(option))
@@ -218,6 +219,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
       ->capture_default_str();
   sub->add_flag("--no-clouds", cmd->noClouds, "Leave out the preset's clouds");
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
+  sub->add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side");
   addSkyModeOption(*sub, cmd->sky);
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runRender(global, *cmd, *sub); });

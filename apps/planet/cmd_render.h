@@ -29,6 +29,7 @@ struct RenderCommand {
   double timeS = 0.0;
   std::string exposure = fmt::format("{:g}", SkySettings{}.exposure);  // a number or "auto"
   bool noClouds = false;
+  bool noLights = false;
   bool noWater = false;
   std::string sky{skyModeName(SkySettings{}.mode)};
   // A video of a camera path (--path, --frames, --fps; with --scene also --path-body).

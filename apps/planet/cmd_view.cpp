@@ -29,6 +29,7 @@ struct ViewCommand {
   std::string screenshot;
   std::string path;
   bool hideUi = false;
+  bool noLights = false;
   std::string exposure = "auto";
   std::string sky{skyModeName(SkySettings{}.mode)};
 };
@@ -50,6 +51,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   if (sub.count("--path") && cmd.path.empty()) throw UsageError("--path must name a file");
   options.screenshot = cmd.screenshot;
   options.hideUi = cmd.hideUi;
+  options.lights = !cmd.noLights;
   const ExposureChoice exposure = parseExposure(cmd.exposure);
   options.autoExposure = exposure.automatic;
   if (!exposure.automatic) options.exposure = exposure.fixed;
@@ -127,6 +129,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
   sub->add_option("--path", cmd->path,
                   "Play a camera path file (format: planet bench --print-path); with --frames, spread over them");
   sub->add_flag("--hide-ui", cmd->hideUi, "Start with the panel hidden (F2 shows it)");
+  sub->add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side (the panel turns them on)");
   sub->add_option("--exposure", cmd->exposure,
                   "HDR exposure before the tonemap: auto (adapts to the view as the eye does) or a fixed number")
       ->capture_default_str();

@@ -105,6 +105,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.terrain.limitOctaves = modes[m].limitOctaves;
     settings.terrain.patches = options.patches;
     settings.terrain.patchTexelsPerFrame = realTimePatchBudget(settings.terrain.patchSettings);  // as the viewer
+    settings.terrain.lights = options.lights;
     settings.autoExposure = options.autoExposure;
     settings.sky.exposure = options.exposure;
     settings.sky.mode = options.skyMode;
@@ -195,6 +196,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["height"] = options.height;
   j["fov_deg"] = options.fovYDeg;
   j["patches"] = options.patches;
+  j["lights"] = options.lights;
   if (options.autoExposure)
     j["exposure"] = "auto";
   else
@@ -284,9 +286,10 @@ std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
   out += fmt::format(
-      "preset: {} (hash {:016x}), {}x{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
+      "preset: {} (hash {:016x}), {}x{}{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
       "warm-up\n",
       preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
+      options.lights ? "" : " without lights",
       options.skyMode == SkyMode::Reference ? ", reference sky" : "",
       options.autoExposure ? "auto" : fmt::format("{:g}", options.exposure), pathSource, pathKeys, pathDurationS,
       options.frames, options.warmup);

@@ -41,6 +41,7 @@ struct FrameBenchOptions {
   SunPose sun;
   bool compare = false;  // also run every other BenchMode
   bool patches = true;   // patch textures (off: vertex normals only, like planet render --no-patches)
+  bool lights = true;    // the preset's city lights (off: like planet render --no-lights)
   // Eye adaptation (planet render --exposure auto): each frame measured and exposed on its own
   // (the luminance pass runs and is timed); else the fixed exposure.
   bool autoExposure = false;

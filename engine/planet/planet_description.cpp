@@ -29,7 +29,8 @@ using toml_reader::TableReader;
 using toml_reader::typeName;
 
 constexpr std::string_view kTopKeys[] = {"planet",     "colors", "materials", "layer",
-                                         "atmosphere", "clouds", "water",     "stars"};
+                                         "atmosphere", "clouds", "water",     "stars",
+                                         "lights"};
 constexpr std::string_view kMaterialKeys[] = {
     "equator_temperature_c", "pole_temperature_drop_c", "lapse_rate_k_per_km", "snow_temperature_c",
     "moisture",              "moisture_noise",          "coastal_height_m",    "dry_belt",
@@ -53,6 +54,7 @@ constexpr std::string_view kCloudKeys[] = {
     "evolve_period_s", "opacity", "climate", "cyclones", "cyclone_radius_m", "swirl", "shear", "warp", "resolution"};
 constexpr std::string_view kWaterKeys[] = {"clarity_m", "wave_wavelength_m", "wave_slope", "wind_mps"};
 constexpr std::string_view kStarKeys[] = {"enabled", "seed", "faintest_magnitude", "brightness"};
+constexpr std::string_view kLightsKeys[] = {"enabled", "radiance_nw", "gain", "color", "coverage", "city_size_m", "seed"};
 constexpr std::string_view kPlanetKeys[] = {"name",        "radius_m",     "has_ocean",
                                             "sea_level_m", "height_scale", "base_height_m"};
 constexpr std::string_view kColorKeys[] = {"scheme",     "beach_height_m",     "snow_line_m",  "ice_cap_latitude_deg",
@@ -257,6 +259,21 @@ StarDescription readStars(const Context& context, const toml::table& table) {
   s.faintestMagnitude = reader.number("faintest_magnitude", kMagnitudeRange).value_or(s.faintestMagnitude);
   s.brightness = reader.number("brightness", kStarBrightnessRange).value_or(s.brightness);
   return s;
+}
+
+LightsDescription readLights(const Context& context, const toml::table& table) {
+  TableReader reader(context, table, "[lights]", kLightsKeys);
+  LightsDescription l;
+  l.enabled = reader.boolean("enabled").value_or(true);
+  l.radianceNw = reader.number("radiance_nw", kLightsRadianceRangeNw).value_or(l.radianceNw);
+  l.gain = reader.number("gain", kLightsGainRange).value_or(l.gain);
+  l.color = reader.color("color").value_or(l.color);
+  if (l.color == glm::vec3(0.0f))
+    context.fail(lineOf(*reader.find("color")), "color must not be black: [0, 0, 0] has no brightness to scale");
+  l.coverage = reader.number("coverage", kUnitRange).value_or(l.coverage);
+  l.citySizeM = reader.number("city_size_m", kCitySizeRangeM).value_or(l.citySizeM);
+  l.seed = uint32_t(reader.integer("seed", kSeedRange).value_or(l.seed));
+  return l;
 }
 
 // [[x, y], ...]: 2 to maxPoints points, x strictly increasing and in xRange, y in kCurveValueRange.
@@ -601,6 +618,7 @@ PlanetDescription parsePlanetDescription(std::string_view text, const std::strin
     d.water = readWater(context, *table);
   }
   if (const toml::table* table = optionalTable(context, root, "stars")) d.stars = readStars(context, *table);
+  if (const toml::table* table = optionalTable(context, root, "lights")) d.lights = readLights(context, *table);
   return d;
 }
 
@@ -739,6 +757,12 @@ std::string canonicalForm(const PlanetDescription& d) {
                      formatNumber(d.water.waveSlope), formatNumber(d.water.windMps));
   out += fmt::format("stars={}\nstars.seed={}\nstars.faintest_magnitude={}\nstars.brightness={}\n", d.stars.enabled,
                      d.stars.seed, formatNumber(d.stars.faintestMagnitude), formatNumber(d.stars.brightness));
+  // Only planets with lights add lines, so the hashes of the others stay as they were.
+  if (const LightsDescription& l = d.lights; l.enabled)
+    out += fmt::format("lights.radiance_nw={}\nlights.gain={}\nlights.color={}\nlights.coverage={}\n"
+                       "lights.city_size_m={}\nlights.seed={}\n",
+                       formatNumber(l.radianceNw), formatNumber(l.gain), color(l.color), formatNumber(l.coverage),
+                       formatNumber(l.citySizeM), l.seed);
   for (size_t i = 0; i < d.layers.size(); ++i) {
     const NoiseLayer& l = d.layers[i];
     const noise::NoiseSettings& n = l.noise;

@@ -182,6 +182,20 @@ struct StarDescription {
   double brightness = 0.4;         // HDR flux of a magnitude-0 star (engine/reference/star_catalogue.h)
 };
 
+// City lights on the night side (issue 14, point 2; shaders/common/city_lights.glsl): clustered
+// into cities and towns on low, gentle, mild, watered land, densest along coasts and valleys,
+// switched on through dusk. Radiance in VIIRS Day/Night Band units, so values can be read off
+// NASA's Black Marble; the gain stands for the night exposure no daylight-calibrated one reaches.
+struct LightsDescription {
+  bool enabled = false;
+  double radianceNw = 60.0;  // nW cm⁻² sr⁻¹ (VIIRS DNB, 500–900 nm) of a fully lit city core
+  double gain = 3e4;         // multiplies the radiance: the longer exposure of a night photograph
+  glm::vec3 color{1.0f, 0.358f, 0.053f};  // linear RGB (a 2,400 K blackbody), scaled by the renderer to luminance 1
+  double coverage = 0.15;               // lit share of the most habitable land of a settled region
+  double citySizeM = 120'000.0;         // wavelength of the cities' largest octave (a metropolis)
+  uint32_t seed = 11;
+};
+
 struct PlanetDescription {
   std::string name;
   double radiusM = 0.0;            // radius of the sphere the heights are measured from
@@ -196,6 +210,7 @@ struct PlanetDescription {
   CloudDescription clouds;
   WaterDescription water;  // used when hasOcean
   StarDescription stars;
+  LightsDescription lights;  // [lights]; absent: none
 };
 
 // A closed interval [min, max]; every bound the parser checks is one of the constants below.
@@ -248,6 +263,9 @@ inline constexpr Range kWaveWavelengthRangeM{0.01, 1e4};
 inline constexpr Range kWaveSlopeRange{0.0, 1.0};
 inline constexpr Range kSeaWindRangeMps{0.0, 40.0};  // Cox & Munk measured up to ~14 m/s; beyond, extrapolated
 inline constexpr Range kMagnitudeRange{0.0, 9.0};
+inline constexpr Range kLightsRadianceRangeNw{0.0, 1e4};  // nW cm⁻² sr⁻¹
+inline constexpr Range kLightsGainRange{0.0, 1e9};
+inline constexpr Range kCitySizeRangeM{1e3, 1e7};
 inline constexpr Range kStarBrightnessRange{0.0, 1e3};
 inline constexpr int kMaxLayers = 8;                 // the height shader's fixed layer array
 inline constexpr size_t kMaxCurvePoints = 16;        // transfer and hypsometry points (gpu::kTerrainCurveKnots)

@@ -305,6 +305,16 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
   w.key("faintest_magnitude", d.stars.faintestMagnitude);
   w.key("brightness", d.stars.brightness);
 
+  if (d.lights.enabled) {
+    w.table("[lights]");
+    w.key("radiance_nw", d.lights.radianceNw);
+    w.key("gain", d.lights.gain);
+    w.key("color", color(d.lights.color));
+    w.key("coverage", d.lights.coverage);
+    w.key("city_size_m", d.lights.citySizeM);
+    w.integer("seed", d.lights.seed);
+  }
+
   for (const NoiseLayer& layer : d.layers) writeLayer(w, layer);
   return w.take();
 }

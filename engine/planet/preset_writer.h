@@ -10,8 +10,8 @@
 //
 // What the schema has no place for is left out and reads back at its default. None of it is
 // drawn: the parameters of a disabled atmosphere or cloud layer, [clouds] without an
-// [atmosphere] (the sky pass draws no clouds without air), and sea_level_m and [water] without
-// an ocean.
+// [atmosphere] (the sky pass draws no clouds without air), sea_level_m and [water] without
+// an ocean, and the parameters of [lights] with enabled = false.
 #pragma once
 
 #include <string>

@@ -19,6 +19,7 @@
 #include "render/patch_textures.h"
 #include "render/relief_cube.h"
 #include "render/sky_tables.h"
+#include "reference/city_lights_cpu.h"
 #include "reference/color_schemes_cpu.h"
 #include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
@@ -249,9 +250,12 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
   desc.fragmentSpirv = kSpv_terrain_frag;
-  // The colour scheme and the polar caps as specialization constants (terrain.frag): lavapipe
-  // runs every side of a branch, and the seed schemes' per-pixel noise would cost every scheme.
-  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u};
+  // The colour scheme, the polar caps and the city lights as specialization constants
+  // (terrain.frag): lavapipe runs every side of a branch, and the seed schemes' per-pixel noise
+  // (or the lights') would cost every planet.
+  if (!wireframe) fillPipelineLights_ = lightsDrawn();
+  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u,
+                                     !wireframe && lightsDrawn() ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   std::vector<uint32_t> vertexSpecialization;
@@ -273,6 +277,11 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
 
 void TerrainPass::buildForToggles() {
   vk::Owned<VkPipeline>& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
+  if (!settings_.wireframe && draw.get() && fillPipelineLights_ != lightsDrawn()) {
+    // The lights were toggled: a frame of the other slot may still draw with the old pipeline.
+    VK_CHECK(vkDeviceWaitIdle(context_.device));
+    draw = {};
+  }
   if (!draw.get()) draw = {context_, createDrawPipeline(settings_.wireframe)};
   if (settings_.patches && !settings_.wireframe && !fullPatches_) {
     // The pass started in wireframe with a stand-in. A frame of the other slot may still use
@@ -468,6 +477,7 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   u.colorSnow = toVec4(c.snow);
   writeMaterials(u, planet_.materials, settings_.bandWavelengthM, o.nadirDirection() * planet_.radiusM);
   u.scheme = schemeGpuParams(c, planet_.radiusM, planet_.materials.rockSlopeDeg);
+  if (lightsDrawn()) u.lights = lightsGpuParams(planet_.lights, planet_.radiusM);
 
   const PatchLayout& layout = frame_.patchLayout;
   if (!layout.levels.empty()) {

@@ -78,6 +78,7 @@ struct TerrainSettings {
   // wait for later frames, coarsest first (PatchTextures::plan). The viewer and the benchmark
   // set it, so that a frame never builds several whole levels; a single render builds all.
   uint64_t patchTexelsPerFrame = 0;
+  bool lights = true;         // city lights on the night side (planets whose preset has [lights])
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
@@ -190,6 +191,12 @@ class TerrainPass {
   void invalidatePatches();
   // The body's rings, whose shadow darkens the ground (null: none).
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
+  // City lights on the night side (planets with [lights]). The fill pipeline is specialised on
+  // them (lavapipe would run their noise on every planet), so a change rebuilds it at the next
+  // prepare(), after waiting for the device to be idle.
+  void setLightsEnabled(bool lights) { settings_.lights = lights; }
+  // Whether this frame's terrain draws lights: the setting and the planet has them.
+  bool lightsDrawn() const { return settings_.lights && planet_.lights.enabled; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).
   void setSunIntensity(double scale) { settings_.sunIntensity = scale; }
   // Fill light, as a fraction of the sun's irradiance (airless bodies).
@@ -246,6 +253,7 @@ class TerrainPass {
   // specialization constants for the ground (water false) or the sea.
   std::span<const uint32_t> noiseVertexSpirv() const;
   std::vector<uint32_t> noiseVertexSpecialization(bool water) const;
+  bool fillPipelineLights_ = false;  // the lights specialisation the fill pipeline was built with
   // The rings, tables (uploaded) and budget figures for `orientation`, with the camera
   // heightAboveGroundM above the ground.
   Lod chooseLod(const TerrainView& view, const ClipmapFrame& orientation, double heightAboveGroundM);

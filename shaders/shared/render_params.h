@@ -11,6 +11,7 @@
 
 #include "shared/eclipse_params.h"
 #include "shared/gpu_types.h"
+#include "shared/lights_params.h"
 #include "shared/ring_params.h"
 #include "shared/scheme_params.h"
 #include "shared/sky_params.h"
@@ -110,8 +111,11 @@ struct FrameUniforms {
   SchemeParams scheme;
   // The other bodies of a scene, which hide the sun from this one's surface (common/eclipse.glsl).
   EclipseParams eclipse;
+  // City lights on the night side (shaders/common/city_lights.glsl); drawn only where the
+  // pipeline's kSpecLights is set.
+  LightsParams lights;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2048 + 272)
+GPU_ASSERT_SIZE(FrameUniforms, 2048 + 272 + 48)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {

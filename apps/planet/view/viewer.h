@@ -28,6 +28,7 @@ struct ViewOptions {
   std::string screenshot;              // save the last frame here (PNG, without the panel)
   std::optional<CameraPath> path;      // play this camera path (with `frames`: spread over them)
   bool hideUi = false;                 // start with the panel hidden (F2 shows it)
+  bool lights = true;                  // the presets' city lights (planet view --no-lights)
   // Eye adaptation (the default), or a fixed exposure.
   bool autoExposure = true;
   double exposure = 10.0;  // SkySettings{}.exposure

@@ -20,6 +20,7 @@ RenderSettings ViewerRenderer::renderSettings(const ViewerSettings& settings, Vk
   base.fovYDeg = settings.fovDeg;
   base.terrain.patches = settings.patches;
   base.terrain.water = settings.water;
+  base.terrain.lights = settings.lights;
   base.sky.clouds = settings.clouds;
   base.sky.exposure = settings.exposure;
   base.autoExposure = settings.autoExposure;
@@ -93,6 +94,7 @@ void ViewerRenderer::applyTerrainToggles(const ViewerSettings& settings) {
     TerrainPass& terrain = renderer_->terrain(body);
     terrain.setWireframe(settings.wireframe);
     terrain.setWaterEnabled(settings.water);
+    terrain.setLightsEnabled(settings.lights);
     terrain.setFreezeLod(settings.freezeLod);
   }
 }

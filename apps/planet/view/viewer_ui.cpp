@@ -240,6 +240,7 @@ void ViewerUi::drawPanel(ViewerSettings& s, UiRequests& r) {
     s.mesh = ClipmapParams{uint32_t(levels), uint32_t(rings), uint32_t(numPhi)};
     r.rebuild |= editDouble("field of view", s.fovDeg, 10.0, 120.0, "%.0f deg");
     r.terrainToggles |= ImGui::Checkbox("water", &s.water);
+    if (s.planet.lights.enabled) r.terrainToggles |= ImGui::Checkbox("city lights", &s.lights);
     r.skyChanged |= ImGui::Checkbox("clouds", &s.clouds);
     if (ImGui::Checkbox("atmosphere", &s.planet.atmosphere.enabled)) r.rebuild = true;
     if (ImGui::Checkbox("stars", &s.planet.stars.enabled)) r.rebuild = true;

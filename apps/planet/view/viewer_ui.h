@@ -25,6 +25,7 @@ struct ViewerSettings {
   ClipmapParams mesh;  // levels, rings per level, vertices per ring (the quality's until edited)
   double fovDeg = 60.0;
   bool water = true;
+  bool lights = true;  // the planet's city lights, where its preset has them
   bool clouds = true;
   bool wireframe = false;
   bool patches = true;
