@@ -39,6 +39,10 @@ layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler2DArray
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
 // Eclipses: the reference march scales each sample's light by the share of the sun it sees past
 // the scene's other bodies, at its place on the segment's ray (its start, plus t along the ray).
+// Whether another body can hide the sun (a scene), as a specialization constant: the eclipse
+// loop's body costs every pixel on lavapipe even with no occluder.
+layout(constant_id = 0) const bool kSpecEclipses = true;
+#define ECLIPSE_POSSIBLE kSpecEclipses
 #include "common/eclipse.glsl"
 vec3 marchStart;  // local frame, from the camera
 vec3 marchDirection;

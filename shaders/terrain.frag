@@ -18,6 +18,10 @@
 
 #include "common/rings.glsl"
 
+// Whether another body can hide the sun (a scene), as a specialization constant: the eclipse
+// loop's body costs every pixel on lavapipe even with no occluder.
+layout(constant_id = 3) const bool kSpecEclipses = true;  // false: no other body can hide the sun
+#define ECLIPSE_POSSIBLE kSpecEclipses
 #include "common/eclipse.glsl"
 
 #include "common/city_lights.glsl"

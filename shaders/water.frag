@@ -18,6 +18,10 @@
 #include "terrain_common.glsl"
 #include "terrain_surface.glsl"
 
+// Whether another body can hide the sun (a scene), as a specialization constant: the eclipse
+// loop's body costs every pixel on lavapipe even with no occluder.
+layout(constant_id = 0) const bool kSpecEclipses = true;
+#define ECLIPSE_POSSIBLE kSpecEclipses
 #include "common/eclipse.glsl"
 
 layout(location = 0) in vec3 inNormal;

@@ -109,10 +109,12 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
     // are seen from afar, where the vertex normals are finer than a pixel.
     TerrainSettings terrain = settings_.terrain;
     if (i > 0) terrain.patches = false;
+    // One body: nothing can eclipse it, and its shaders leave that code out.
+    terrain.eclipses = planets.size() > 1;
     body.skyTables = std::make_unique<SkyTables>(context_, body.planet);
     body.terrain =
         std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
-    body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky);
+    body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky, terrain.eclipses);
     if (rings[i]) {
       body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat, body.skyTables.get());
       const gpu::RingParams shadow = ringGpuParams(*rings[i], body.planet.radiusM, kSunAngularRadiusRad);

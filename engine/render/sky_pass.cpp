@@ -70,8 +70,9 @@ SkyMode parseSkyMode(std::string_view name) {
 }
 
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
-                 const SkySettings& settings)
+                 const SkySettings& settings, bool eclipses)
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
+  eclipseSpecialization_[0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
     uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -133,14 +134,16 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
 
 void SkyPass::makePipelines() {
   if (settings_.mode == SkyMode::Tables && !tablesCompose_.get()) {
-    tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get())};
+    tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(),
+                                                                    eclipseSpecialization_)};
     skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
     aerialBuild_ = {context_,
                     vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
   }
   if (settings_.mode == SkyMode::Reference && !referenceCompose_.get())
     referenceCompose_ = {context_,
-                         vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp, layout_.get())};
+                         vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp, layout_.get(),
+                                                             eclipseSpecialization_)};
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {

@@ -79,7 +79,9 @@ class SkyPass {
   static constexpr uint32_t kTimingScopes = 1;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
-  SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables, const SkySettings& settings);
+  // `eclipses` false leaves the eclipse code out of the compose shader (no other body).
+  SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables, const SkySettings& settings,
+          bool eclipses = true);
 
   // Points the pass at the frame's HDR colour (storage, GENERAL while composing) and depth
   // (sampled) images; call again when they are recreated.
@@ -107,6 +109,7 @@ class SkyPass {
   void makePipelines();
 
   vk::Context& context_;
+  uint32_t eclipseSpecialization_[1] = {1u};  // sky.comp's kSpecEclipses
   PlanetDescription planet_;
   const SkyTables& tables_;
   SkySettings settings_;

@@ -223,9 +223,9 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     if (noiseDrawLayout_.get()) {
       const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
       water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat,
-                                           noiseVertexSpirv(), specialization);
+                                           settings.eclipses, noiseVertexSpirv(), specialization);
     } else {
-      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat);
+      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat, settings.eclipses);
     }
   }
 }
@@ -255,7 +255,7 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   // (or the lights') would cost every planet.
   if (!wireframe) fillPipelineLights_ = lightsDrawn();
   const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u,
-                                     !wireframe && lightsDrawn() ? 1u : 0u};
+                                     !wireframe && lightsDrawn() ? 1u : 0u, settings_.eclipses ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   std::vector<uint32_t> vertexSpecialization;

@@ -79,6 +79,9 @@ struct TerrainSettings {
   // set it, so that a frame never builds several whole levels; a single render builds all.
   uint64_t patchTexelsPerFrame = 0;
   bool lights = true;         // city lights on the night side (planets whose preset has [lights])
+  // Whether other bodies may hide the sun (a scene): off, the shaders leave the eclipse code out
+  // (a specialization constant; the Renderer sets it from its body count).
+  bool eclipses = true;
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)

@@ -12,11 +12,14 @@
 namespace planet {
 
 WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
-                     std::span<const uint32_t> vertexSpirv, std::span<const uint32_t> vertexSpecialization) {
+                     bool eclipses, std::span<const uint32_t> vertexSpirv,
+                     std::span<const uint32_t> vertexSpecialization) {
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;
   desc.vertexSpirv = vertexSpirv.empty() ? std::span<const uint32_t>(kSpv_water_vert) : vertexSpirv;
   desc.vertexSpecialization = vertexSpecialization;
+  const uint32_t fragmentSpecialization[] = {eclipses ? 1u : 0u};  // water.frag's kSpecEclipses
+  desc.fragmentSpecialization = fragmentSpecialization;
   desc.fragmentSpirv = kSpv_water_frag;
   desc.colorFormat = colorFormat;
   desc.depthFormat = depthFormat;

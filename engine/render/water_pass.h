@@ -34,7 +34,8 @@ class WaterPass {
   // A pipeline over the terrain pass's `layout`, for a dynamic-rendering scope of colorFormat and
   // depthFormat. The vertices come from water.vert, or from `vertexSpirv` with its
   // specialization constants (the vertex-shader height source: terrain_noise.vert).
-  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
+  // `eclipses` false leaves the eclipse code out of the fragment shader (no other body).
+  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat, bool eclipses,
             std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> vertexSpecialization = {});
 
   // Records the draw of the ground's triangles (the first `indexCount` indices of the bound index

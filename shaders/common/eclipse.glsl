@@ -69,10 +69,17 @@ real occluderSunVisible(vec3 toOccluder, real radius, vec3 sun, real sunRadius) 
 // minus the camera, in the frame of e's positions and of `sun`. `refracted` is the sunlight the
 // occluders' air bends into their shadows there, as a share of the sun's irradiance per
 // channel: each occluder's e.refracted times the share of the sun it covers.
+#ifndef ECLIPSE_POSSIBLE
+#define ECLIPSE_POSSIBLE true
+#endif
+
 real eclipseSunVisibleRefracted(vec3 fromCamera, vec3 sun, IN(EclipseParams) e, OUT(vec3) refracted) {
   PRECISE real visible = 1.0f;
   refracted = vec3(0.0f, 0.0f, 0.0f);
-  uint count = uint(e.sun.y);
+  // ECLIPSE_POSSIBLE: a GLSL includer's specialization constant, false where no other body can
+  // hide the sun (a renderer of one body): lavapipe runs a loop's body once even for no
+  // occluders, and the shader compiler drops it only when the count is a constant.
+  uint count = ECLIPSE_POSSIBLE ? uint(e.sun.y) : 0u;
   for (uint i = 0u; i < count; ++i) {
     vec4 o = e.occluders[i];
     vec3 toOccluder = vec3(o.x - fromCamera.x, o.y - fromCamera.y, o.z - fromCamera.z);
