@@ -471,12 +471,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
   }
   // The compose pass reads and writes the HDR colour and samples the depth.
-  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  toComposeLayouts(cmd);
   // The atmospheres and the rings, far to near (prepareFrame's order).
   bool composed = false;  // the last step was a compose pass
   for (const ComposeStep& step : composeOrder_) {
@@ -512,6 +507,17 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vkCmdEndRendering(cmd);
 }
 
+void Renderer::toComposeLayouts(VkCommandBuffer cmd) {
+  // After drawing into the targets: the compose pass reads and writes the HDR colour and samples
+  // the depth.
+  vk::transitionImage(cmd, *hdr_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vk::transitionImage(cmd, *depth_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
 void Renderer::recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* timer) {
   vk::Image& hdr = *hdr_;
   vk::Image& depth = *depth_;
@@ -536,12 +542,7 @@ void Renderer::recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* t
   vkCmdEndRendering(cmd);
   // Back for the next compose pass (or the luminance and tonemap passes, through the barrier
   // after the last step): it reads and writes the colour and samples the depth the draw wrote.
-  vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vk::transitionImage(cmd, depth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  toComposeLayouts(cmd);
 }
 
 RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, double timeS, bool readHdr) {

@@ -173,6 +173,8 @@ class Renderer {
   RenderResult finishFrame(const Prepared& prepared, bool readHdr);
   // One ring draw between compose passes: the HDR colour and depth from their compute layouts
   // to attachments and back.
+  // The HDR target to GENERAL and the depth to SHADER_READ_ONLY after a draw, for compose passes.
+  void toComposeLayouts(VkCommandBuffer cmd);
   void recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* timer);
   // The one-planet calls (prepare, render) on a renderer of one body: throws otherwise.
   void checkOnePlanet(const char* call, const char* sceneCall) const;
