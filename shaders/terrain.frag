@@ -12,6 +12,15 @@
 
 #include "terrain_surface.glsl"
 
+// Per frame, the parts of the shading the view can show (TerrainPass::shadingFor), as
+// specialization constants: lavapipe runs every side of a branch and a loop's body at least once,
+// so code that a frame cannot use would still cost every pixel.
+// The detail octaves: false when no ground in view is near enough for a pixel to resolve them.
+layout(constant_id = 4) const bool kSpecGroundDetail = true;
+#define GROUND_DETAIL_POSSIBLE kSpecGroundDetail
+// The ring shadow: true only for a body with rings.
+layout(constant_id = 5) const bool kSpecRingShadow = true;
+
 #include "terrain_material.glsl"
 
 #include "common/color_schemes.glsl"
@@ -31,7 +40,9 @@ layout(constant_id = 3) const bool kSpecEclipses = true;  // false: no other bod
 // scheme's code would cost every planet; with constants the compiler drops the others.
 layout(constant_id = 0) const uint kSpecScheme = 0u;
 layout(constant_id = 1) const uint kSpecPolarCaps = 0u;
-layout(constant_id = 2) const uint kSpecLights = 0u;  // 1: the planet's city lights are drawn
+// 1: the planet's city lights are drawn, and night is in view (the fill pipeline of a frame with
+// no night in view leaves them out: lightsDuskFade is 0 wherever the sun is up).
+layout(constant_id = 2) const uint kSpecLights = 0u;
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
@@ -177,7 +188,7 @@ void main() {
     }
   }
   vec3 sunLight = sunIrradianceAt(height, up);
-  if (frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it
+  if (kSpecRingShadow && frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it
     mat3 localToPlanet = mat3(frame.localToPlanet);
     vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
     sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);

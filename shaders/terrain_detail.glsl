@@ -28,6 +28,13 @@
 #define NOISE_NO_CRATERS
 #include "common/noise.glsl"
 
+// An includer's specialization constant: false in frames where no pixel's footprint is below
+// half the detail's longest wavelength, so that every octave's fade is 0 and groundDetail returns
+// zeros (TerrainPass::shadingFor); the code is then left out.
+#ifndef GROUND_DETAIL_POSSIBLE
+#define GROUND_DETAIL_POSSIBLE true
+#endif
+
 const uint kGroundSeedBiome = 0x2c1b3c6du;   // the coarse octaves' lattice seed
 const uint kGroundSeedDetail = 0x297a2d39u;  // the fine octaves'
 
@@ -80,6 +87,7 @@ GroundDetail groundDetail(vec3 offsetPlanet, float footprintM) {
   d.albedo = 0.0f;
   d.hue = 0.0f;
   d.stones = 0.0f;
+  if (!GROUND_DETAIL_POSSIBLE) return d;
   for (uint i = kGroundBiomeOctavesGpu; i < kGroundOctavesGpu; ++i) {
     float frequency = frame.groundOctaves[i].w;
     float fade = octaveFade(1.0f / frequency, footprintM);

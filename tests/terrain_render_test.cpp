@@ -208,6 +208,59 @@ TEST_F(TerrainRender, FrustumCullingDrawsTheSamePictureWithFewerTriangles) {
   }
 }
 
+// The parts of the ground's shading a frame leaves out (TerrainShading): night from the
+// horizon cut's cap around the nadir, the detail from the nearest ground and the smallest pixel.
+TEST(TerrainShading, NightAndFootprintBoundsFollowTheView) {
+  const double radius = 6.371e6;
+  const glm::dvec3 up{0.0, 0.0, 1.0};
+  auto sunAt = [&](double elevationDeg) {
+    const double e = elevationDeg * std::numbers::pi / 180.0;
+    return glm::dvec3(std::cos(e), 0.0, std::sin(e));
+  };
+  // From 400 km the cap reaches 20.2° (and 3.0° more to see a 9 km peak): the sun 35° up at the
+  // nadir is above every horizon in it; 20° up it is not.
+  EXPECT_FALSE(nightInView(up * (radius + 4.0e5), sunAt(35.0), radius, 9000.0, 0.0));
+  EXPECT_TRUE(nightInView(up * (radius + 4.0e5), sunAt(20.0), radius, 9000.0, 0.0));
+  // From 20,000 km nearly a hemisphere is in view: night is, unless the sun stands at the nadir.
+  EXPECT_TRUE(nightInView(up * (radius + 2.0e7), sunAt(35.0), radius, 9000.0, 0.0));
+  EXPECT_FALSE(nightInView(up * (radius + 2.0e7), sunAt(90.0), radius, 9000.0, 0.0));
+  // 160x90 at 60°: f = 77.94 pixels, the corner 91.79 pixels from the centre: 5.375e-3 rad.
+  const double fov = std::numbers::pi / 3.0;
+  EXPECT_NEAR(smallestFootprintM(up * (radius + 10000.0), radius, 9000.0, fov, 160, 90), 1000.0 * 5.375e-3, 1e-3);
+  EXPECT_EQ(smallestFootprintM(up * (radius + 8000.0), radius, 9000.0, fov, 160, 90), 0.0);
+}
+
+// Leaving out what a view cannot show leaves the picture bit for bit as it was: each view drawn
+// with the frame's shading and with every part the planet has, from the sky (night in view or
+// not) to 2 m. And the views do leave parts out (else the test would prove nothing).
+TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
+  const PlanetDescription planet = resolvePreset("earth");
+  RenderSettings all = smallSettings(true);
+  all.terrain.shadingPerFrame = false;
+  Renderer perFrame(context(), planet, smallSettings(true));
+  Renderer everything(context(), planet, all);
+  const double peaks = perFrame.terrain().maxTerrainHeightM();
+  struct Case {
+    CameraPose camera;
+    SunPose sun;
+    bool lights, detail;
+  };
+  const Case cases[] = {
+      {{kLat, kLon, 4.0e5, 0.0, -90.0}, {135.0, 35.0}, false, false},   // day from 400 km
+      {{kLat, kLon, 1.2e7, 0.0, -90.0}, {135.0, -30.0}, true, false},   // night in view from orbit
+      {{kLat, kLon, peaks + 600.0, 60.0, -20.0}, {135.0, 35.0}, false, false},  // just too high for the detail
+      {{kLat, kLon, 2.0, 60.0, -20.0}, {135.0, 35.0}, false, true}};            // 2 m above the ground
+  for (const Case& c : cases) {
+    SCOPED_TRACE("altitude " + std::to_string(c.camera.altitudeM));
+    const RenderResult shaded = perFrame.render(c.camera, c.sun);
+    const RenderResult reference = everything.render(c.camera, c.sun);
+    EXPECT_EQ(perFrame.terrain().frame().shading.lights, c.lights);
+    EXPECT_EQ(perFrame.terrain().frame().shading.groundDetail, c.detail);
+    EXPECT_TRUE(everything.terrain().frame().shading.lights && everything.terrain().frame().shading.groundDetail);
+    EXPECT_EQ(shaded.image.pixels, reference.image.pixels);
+  }
+}
+
 // Fraction of pixels brighter than black on a circle of radius r pixels about the centre.
 double litFraction(const Rgba8Image& image, double r) {
   int lit = 0;

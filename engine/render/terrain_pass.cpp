@@ -37,6 +37,14 @@
 namespace planet {
 namespace {
 
+// The per-pixel ground noise's octave i (terrain_detail.glsl): the biome octaves continue the
+// band noise (largest wavelength bandWavelengthM) by factors of 4 from a sixteenth of it; the
+// detail octaves run from 4 m by factors of 3.
+double groundOctaveFrequency(uint32_t i, double bandWavelengthM) {
+  return i < gpu::kGroundBiomeOctavesGpu ? std::ldexp(16.0 / bandWavelengthM, int(2 * i))
+                                         : std::pow(3.0, double(i - gpu::kGroundBiomeOctavesGpu)) / 4.0;
+}
+
 constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // frame
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // mesh
@@ -79,9 +87,7 @@ void writeMaterials(gpu::FrameUniforms& u, const MaterialDescription& m, double 
   u.colorTundra = toVec4(m.tundra);
   u.colorScree = toVec4(m.scree);
   for (uint32_t i = 0; i < gpu::kGroundOctavesGpu; ++i) {
-    const double frequency = i < gpu::kGroundBiomeOctavesGpu
-                                 ? std::ldexp(16.0 / bandWavelengthM, int(2 * i))
-                                 : std::pow(3.0, double(i - gpu::kGroundBiomeOctavesGpu)) / 4.0;
+    const double frequency = groundOctaveFrequency(i, bandWavelengthM);
     u.groundOctaves[i].w = float(frequency);
     glm::uvec4 shift;
     splitLatticeAnchor(anchorM * frequency, u.groundOctaves[i], shift);
@@ -91,6 +97,31 @@ void writeMaterials(gpu::FrameUniforms& u, const MaterialDescription& m, double 
 }
 
 }  // namespace
+
+bool nightInView(const glm::dvec3& cameraPlanet, const glm::dvec3& sunDirection, double radiusM,
+                 double maxTerrainHeightM, double lowestSurfaceM) {
+  const double distance = glm::length(cameraPlanet);
+  if (!(distance > 0.0)) return true;
+  const glm::dvec3 nadir = cameraPlanet / distance;
+  const double cap = horizonTheta(radiusM, distance - radiusM, maxTerrainHeightM, lowestSurfaceM);
+  const double sunFromNadir = std::acos(std::clamp(glm::dot(nadir, sunDirection), -1.0, 1.0));
+  // The interpolated vertex normals and float directions stray far less than the margin.
+  constexpr double kMarginRad = std::numbers::pi / 180.0;
+  return sunFromNadir + cap > 0.5 * std::numbers::pi - kMarginRad;
+}
+
+double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double maxTerrainHeightM, double fovYRad,
+                          uint32_t width, uint32_t height) {
+  const double nearest = glm::length(cameraPlanet) - (radiusM + std::max(maxTerrainHeightM, 0.0));
+  if (!(nearest > 0.0) || width == 0 || height == 0) return 0.0;
+  // A pixel at distance rho from the image's centre (focal length f, in pixels) spans
+  // f / (f² + rho²) radians across the radius and 1 / sqrt(f² + rho²) along it: the least, at
+  // the corners, the former. A derivative over one pixel on the ground is at least the distance
+  // times that (the ground tilted away only lengthens it).
+  const double f = 0.5 * double(height) / std::tan(0.5 * fovYRad);
+  const double rho2 = 0.25 * (double(width) * double(width) + double(height) * double(height));
+  return nearest * f / (f * f + rho2);
+}
 
 const char* heightSourceName(HeightSource source) {
   switch (source) {
@@ -216,7 +247,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   if (settings.heightSource == HeightSource::VertexShader)
     noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                           VK_SHADER_STAGE_VERTEX_BIT)};
-  (settings.wireframe ? wireframePipeline_ : fillPipeline_) = {context, createDrawPipeline(settings.wireframe)};
+  // The fill pipelines are built on first use, per shading (prepare()).
+  if (settings.wireframe) wireframePipeline_ = {context, createDrawPipeline(true)};
   // The sea reads the vertex buffers the compute (or CPU) heights fill; in seed 002's design
   // (heights in the vertex shader) its vertices evaluate the noise again.
   if (planet.hasOcean) {
@@ -246,16 +278,19 @@ std::vector<uint32_t> TerrainPass::noiseVertexSpecialization(bool water) const {
   return values;
 }
 
-VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
+VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
   desc.fragmentSpirv = kSpv_terrain_frag;
-  // The colour scheme, the polar caps and the city lights as specialization constants
-  // (terrain.frag): lavapipe runs every side of a branch, and the seed schemes' per-pixel noise
-  // (or the lights') would cost every planet.
-  if (!wireframe) fillPipelineLights_ = lightsDrawn();
-  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme), planet_.colors.polarCaps ? 1u : 0u,
-                                     !wireframe && lightsDrawn() ? 1u : 0u, settings_.eclipses ? 1u : 0u};
+  // The colour scheme, the polar caps, the eclipses and the frame's shading (TerrainShading) as
+  // specialization constants (terrain.frag): lavapipe runs every side of a branch, and the seed
+  // schemes' per-pixel noise (or the lights') would cost every planet.
+  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme),
+                                     planet_.colors.polarCaps ? 1u : 0u,
+                                     !wireframe && shading.lights ? 1u : 0u,
+                                     settings_.eclipses ? 1u : 0u,
+                                     !wireframe && shading.groundDetail ? 1u : 0u,
+                                     !wireframe && shading.ringShadow ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   std::vector<uint32_t> vertexSpecialization;
@@ -275,14 +310,27 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe) {
   return vk::createGraphicsPipeline(context_, desc);
 }
 
+TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) const {
+  TerrainShading shading;
+  shading.lights = lightsDrawn();
+  shading.groundDetail = true;
+  shading.ringShadow = ring_.has_value();
+  // A frozen mesh is seen from anywhere: all of it.
+  if (!settings_.shadingPerFrame || lodFrozen) return shading;
+  const glm::dvec3& camera = view.camera.position;
+  const double radius = planet_.radiusM;
+  shading.lights =
+      shading.lights && nightInView(camera, view.sunDirection, radius, maxTerrainHeightM_, lowestSurfaceM_);
+  // terrain_detail.glsl: octave i fades out where the footprint reaches half its wavelength; a
+  // tenth of margin for the derivatives' float error.
+  const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
+  shading.groundDetail = 0.9 * smallestFootprintM(camera, radius, maxTerrainHeightM_, view.fovYRad, view.width,
+                                                   view.height) < 0.5 * longestDetailM;
+  return shading;
+}
+
 void TerrainPass::buildForToggles() {
-  vk::Owned<VkPipeline>& draw = settings_.wireframe ? wireframePipeline_ : fillPipeline_;
-  if (!settings_.wireframe && draw.get() && fillPipelineLights_ != lightsDrawn()) {
-    // The lights were toggled: a frame of the other slot may still draw with the old pipeline.
-    VK_CHECK(vkDeviceWaitIdle(context_.device));
-    draw = {};
-  }
-  if (!draw.get()) draw = {context_, createDrawPipeline(settings_.wireframe)};
+  if (settings_.wireframe && !wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
   if (settings_.patches && !settings_.wireframe && !fullPatches_) {
     // The pass started in wireframe with a stand-in. A frame of the other slot may still use
     // the old textures and the descriptor sets: wait for every frame (once per pass).
@@ -382,6 +430,11 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   }
   const glm::dmat4 projection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
+  info.shading = shadingFor(view, info.lodFrozen);
+  if (!info.wireframe) {
+    vk::Owned<VkPipeline>& fill = fillPipelines_[info.shading.key()];
+    if (!fill.get()) fill = {context_, createDrawPipeline(false, info.shading)};
+  }
   frame_ = info;
   // This frame's share of the patch levels' work (all of it without a budget).
   patchPlan_ = patches ? patches_->plan(info.patchLayout, settings_.patchTexelsPerFrame) : PatchTextures::Plan{};
@@ -626,7 +679,7 @@ void TerrainPass::bindDrawState(VkCommandBuffer cmd) const {
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
-  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipeline_;
+  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipelines_[frame_.shading.key()];
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
   bindDrawState(cmd);
   // The culled mesh: the kept quads of the drawn bands, then the fan that closes the innermost

@@ -3,6 +3,7 @@
 // textures, and the draw. DESIGN.md "One frame" steps 1–3 for the terrain.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -82,10 +83,37 @@ struct TerrainSettings {
   // Whether other bodies may hide the sun (a scene): off, the shaders leave the eclipse code out
   // (a specialization constant; the Renderer sets it from its body count).
   bool eclipses = true;
+  // Leave out of each frame's ground shading what its view cannot show (TerrainShading): the
+  // pictures are the same. Off, every frame shades with all the parts the planet has (to test
+  // that they are).
+  bool shadingPerFrame = true;
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
 };
+
+// The optional parts of the ground's shading (terrain.frag's specialization constants). Lavapipe
+// runs every side of a branch and a loop's body at least once, so each costs every pixel of every
+// frame it is compiled into; a frame's fill pipeline has only those its view can show
+// (TerrainPass::shadingFor), each combination built on first use.
+struct TerrainShading {
+  bool lights = false;        // city lights: the planet has them, they are on, and night is in view
+  bool groundDetail = false;  // the detail octaves: some pixel's footprint is fine enough to show them
+  bool ringShadow = false;    // the body's rings shadow it
+  uint32_t key() const { return (lights ? 1u : 0u) | (groundDetail ? 2u : 0u) | (ringShadow ? 4u : 0u); }
+  static constexpr uint32_t kKeys = 8;
+};
+
+// Whether any ground the mesh can show (the horizon cut's cap around the camera's nadir,
+// clipmap_orientation.h) has the sun below its horizon, with a 1° margin. The planet frame's
+// camera position and unit sun direction.
+bool nightInView(const glm::dvec3& cameraPlanet, const glm::dvec3& sunDirection, double radiusM,
+                 double maxTerrainHeightM, double lowestSurfaceM);
+// A lower bound on the ground footprint of any pixel (m): the distance to the nearest ground the
+// highest terrain allows, times the smallest angle a pixel spans (at the image's corners). 0 when
+// the camera is below the highest terrain.
+double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double maxTerrainHeightM, double fovYRad,
+                          uint32_t width, uint32_t height);
 
 // What the CPU decided for a frame.
 struct TerrainFrameInfo {
@@ -111,6 +139,7 @@ struct TerrainFrameInfo {
   bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
   bool wireframe = false;   // drawn as triangle edges
   bool waterDrawn = false;  // the water sphere is drawn
+  TerrainShading shading;   // the parts of the ground's shading drawn (the fill pipeline's)
   // The sun the shaders got: irradiance at the top of the atmosphere (gpu::kSunIrradiance units)
   // and the disc's angular radius.
   double sunIrradiance = 0.0;
@@ -194,9 +223,7 @@ class TerrainPass {
   void invalidatePatches();
   // The body's rings, whose shadow darkens the ground (null: none).
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
-  // City lights on the night side (planets with [lights]). The fill pipeline is specialised on
-  // them (lavapipe would run their noise on every planet), so a change rebuilds it at the next
-  // prepare(), after waiting for the device to be idle.
+  // City lights on the night side (planets with [lights]).
   void setLightsEnabled(bool lights) { settings_.lights = lights; }
   // Whether this frame's terrain draws lights: the setting and the planet has them.
   bool lightsDrawn() const { return settings_.lights && planet_.lights.enabled; }
@@ -240,7 +267,10 @@ class TerrainPass {
   // Creates what the current toggles need and does not exist yet: the draw pipeline of the
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
-  VkPipeline createDrawPipeline(bool wireframe);
+  VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {});
+  // The parts of the ground's shading this view can show (all the planet has when
+  // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
+  TerrainShading shadingFor(const TerrainView& view, bool lodFrozen) const;
   // Binds what both draws read (descriptor set, index buffer, the vertex-shader source's push
   // constants) with `layout`'s pipeline already bound.
   void bindDrawState(VkCommandBuffer cmd) const;
@@ -256,7 +286,6 @@ class TerrainPass {
   // specialization constants for the ground (water false) or the sea.
   std::span<const uint32_t> noiseVertexSpirv() const;
   std::vector<uint32_t> noiseVertexSpecialization(bool water) const;
-  bool fillPipelineLights_ = false;  // the lights specialisation the fill pipeline was built with
   // The rings, tables (uploaded) and budget figures for `orientation`, with the camera
   // heightAboveGroundM above the ground.
   Lod chooseLod(const TerrainView& view, const ClipmapFrame& orientation, double heightAboveGroundM);
@@ -308,9 +337,9 @@ class TerrainPass {
   vk::Owned<VkPipelineLayout> layout_;
   vk::Owned<VkPipeline> heightsPipeline_;
   vk::Owned<VkPipelineLayout> noiseDrawLayout_;  // HeightSource::VertexShader: push constants in the vertex stage
-  // The draw, filled and as edges: the constructed mode's at once, the other on first use.
-  vk::Owned<VkPipeline> fillPipeline_;
+  // The draw as edges, on first use; filled, one per TerrainShading::key(), each on first use.
   vk::Owned<VkPipeline> wireframePipeline_;
+  std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> fillPipelines_;
   std::unique_ptr<WaterPass> water_;  // planets with an ocean, except HeightSource::VertexShader
 
   uint32_t slot_ = 0;  // of the last prepare()
