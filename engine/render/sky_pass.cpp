@@ -201,9 +201,9 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
 }
 
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
-  if (timer) timer->begin(cmd, "sky");
   const uint32_t group = gpu::kSkyWorkgroupSize;
   const bool tables = settings_.mode == SkyMode::Tables;
+  if (timer) timer->begin(cmd, tables ? "sky" : "compose");
   if (tables) {
     const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     if (!tablesInitialised_) {
@@ -220,10 +220,12 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                             nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
     vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+    if (timer) timer->next(cmd, "aerial");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
     // The compose samples what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    if (timer) timer->next(cmd, "compose");
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tables ? tablesCompose_.get() : referenceCompose_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);

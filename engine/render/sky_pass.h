@@ -75,8 +75,9 @@ struct SkyView {
 
 class SkyPass {
  public:
-  // Timing scopes a frame records at most: "sky" (the per-frame tables and the compose).
-  static constexpr uint32_t kTimingScopes = 1;
+  // Timing scopes a frame records at most: "sky" (the sky-view table), "aerial" (the
+  // aerial-perspective volume) and "compose" (the reference mode records only "compose").
+  static constexpr uint32_t kTimingScopes = 3;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
   // `eclipses` false leaves the eclipse code out of the compose shader (no other body).
