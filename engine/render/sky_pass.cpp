@@ -11,6 +11,7 @@
 #include "render/sky_tables.h"
 #include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
+#include "spv/sky_clouds.comp.h"
 #include "spv/sky_reference.comp.h"
 #include "spv/sky_view.comp.h"
 #include "vk/commands.h"
@@ -36,6 +37,8 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // sky view
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial light
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial transmittance
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud light (the cloud pass writes it, the compose reads it)
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud end (likewise)
 };
 
 // The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
@@ -47,6 +50,11 @@ constexpr VkDescriptorType kTableBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial light
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial transmittance
 };
+
+// The cloud pass's images (shaders/shared/sky_params.h, kSkyBindingCloudLight and kSkyBindingCloudEnd):
+// distances need float's range and precision, light and transmittance do with half floats.
+constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
@@ -60,6 +68,12 @@ void validateSkySettings(const SkySettings& settings) {
 }
 
 }  // namespace
+
+uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAngleRad) {
+  // A cover texel straight below spans coverTexelM / (aboveCloudsM · pixelAngleRad) pixels.
+  if (aboveCloudsM <= 0.0) return 2;
+  return coverTexelM >= kHalfResolutionTexelPixels * aboveCloudsM * pixelAngleRad ? 2 : 1;
+}
 
 std::string_view skyModeName(SkyMode mode) { return mode == SkyMode::Reference ? "reference" : "tables"; }
 
@@ -136,6 +150,8 @@ void SkyPass::makePipelines() {
   if (settings_.mode == SkyMode::Tables && !tablesCompose_.get()) {
     tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(),
                                                                     eclipseSpecialization_)};
+    cloudsPass_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(),
+                                                                 eclipseSpecialization_)};
     skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
     aerialBuild_ = {context_,
                     vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
@@ -155,6 +171,19 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
   }
   width_ = hdr.extent.width;
   height_ = hdr.extent.height;
+  // The targets' size: the cloud pass runs at full resolution from far away (cloudPassScale).
+  const VkExtent2D extent{width_, height_};
+  cloudLight_.reset();
+  cloudEnd_.reset();
+  cloudLight_ = {context_, vk::createImage2D(context_, extent, kCloudLightFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
+  cloudEnd_ = {context_, vk::createImage2D(context_, extent, kCloudEndFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
+  cloudImagesInitialised_ = false;
+  for (VkDescriptorSet set : sets_) {
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudLight, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             cloudLight_->view, VK_IMAGE_LAYOUT_GENERAL);
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudEnd, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cloudEnd_->view,
+                             VK_IMAGE_LAYOUT_GENERAL);
+  }
 }
 
 void SkyPass::setSettings(const SkySettings& settings) {
@@ -180,6 +209,9 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
   u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(view.localToPlanet), view.sunAngularRadiusRad);
   tables_.clouds().writeUniforms(u, view.timeS);
+  cloudScale_ = cloudPassScale(view.altitudeM - planet_.clouds.topM, double(u.cloudShape.x) * planet_.radiusM,
+                               view.pixelAngleRad);
+  u.cloudShape.w = float(cloudScale_);
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
@@ -223,8 +255,24 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (timer) timer->next(cmd, "aerial");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
-    // The compose samples what the builds wrote.
+    // The cloud pass and the compose sample what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    if (timer) timer->next(cmd, "clouds");
+    if (!cloudImagesInitialised_) {
+      // New images start undefined and stay in GENERAL (the earlier barrier ordered this after
+      // the previous frame's compose, which read the old contents).
+      for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_})
+        vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      cloudImagesInitialised_ = true;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    const uint32_t samplesX = (width_ + cloudScale_ - 1) / cloudScale_,
+                   samplesY = (height_ + cloudScale_ - 1) / cloudScale_;
+    vkCmdDispatch(cmd, (samplesX + group - 1) / group, (samplesY + group - 1) / group, 1);
+    // The compose reads what the cloud pass wrote.
+    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     if (timer) timer->next(cmd, "compose");
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tables ? tablesCompose_.get() : referenceCompose_.get());

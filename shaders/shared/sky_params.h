@@ -26,6 +26,12 @@ GPU_CONST uint kSkyBindingMultipleScattering = 5u;   // sampler2D: Ψ_ms (the re
 GPU_CONST uint kSkyBindingSkyView = 6u;              // sampler2D: the sky-view table (the tables' compose)
 GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler2DArray: in-scattered light per froxel
 GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler2DArray: transmittance per froxel
+// The cloud pass's results (sky_clouds.comp writes one texel per SkyUniforms::cloudShape.w² pixels from the top
+// left corner, sky.comp reads them):
+GPU_CONST uint kSkyBindingCloudLight = 9u;  // image2D rgba16f: rgb the cloud's light composited with the air in front
+                                            // of it, a its transmittance
+GPU_CONST uint kSkyBindingCloudEnd = 10u;   // image2D rgba32f: x the distance to the drawn surface (kInfinity: none),
+                                            // y the ray's path through the layer before its end, z the shadow there
 
 // The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
 // aerial_perspective.comp before the compose pass, from the same SkyUniforms.
@@ -98,7 +104,7 @@ struct SkyUniforms {
   vec4 clouds;         // x: bottom (m above R), y: top, z: extinction of full density (1/m), w: cloud width over
                        // the layer's thickness (caps slant paths through a cloud)
   vec4 cloudShape;     // x: angle of a level-0 cover texel (rad), y: the cover's last mip level, z: most samples per
-                       // crossing of the layer, w: unused
+                       // crossing of the layer, w: pixels per sample of the cloud pass along each axis (1 or 2)
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
   vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc
