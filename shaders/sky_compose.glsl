@@ -144,24 +144,40 @@ uint layerIntervals(float R, float h, float mu, float tEnd, out vec2 first, out 
   return count;
 }
 
-// Composes the layer along one stretch [t0, t1] of the ray: a few segments, nearer ones
-// shorter, each reading the cover once at its middle, averaged over the segment's length and
-// the pixel's footprint (the mip level), and crossing the column there analytically: the part of
-// the segment's altitude range inside the column is the part of its length inside the cloud.
-void marchLayer(vec3 dir, float R, float h, float mu, vec2 stretch, float nu, float muSCamera, float r,
-                vec3 sunLight, vec3 skyLight, inout vec3 light, inout float transmittance, inout float weightedT,
-                inout float weight) {
+// The segments a stretch of the ray in the layer is crossed in (nearer ones shorter).
+uint layerSegments(vec2 stretch, float across) {
+  float thickness = sky.clouds.y - sky.clouds.x;
+  return uint(clamp(ceil((stretch.y - stretch.x) * across / (1.5f * thickness)), 1.0f, sky.cloudShape.z));
+}
+
+// Composes the layer along the ray's stretches in it (`count` of first, second): a few segments
+// each, nearer ones shorter, each reading the cover once at its middle, averaged over the
+// segment's length and the pixel's footprint (the mip level), and crossing the column there
+// analytically: the part of the segment's altitude range inside the column is the part of its
+// length inside the cloud. One loop over both stretches' segments: a CPU device runs a loop as
+// long as its longest lane, and each call of a loop at least once.
+void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, uint count, float nu, float muSCamera,
+                float r, vec3 sunLight, vec3 skyLight, inout vec3 light, inout float transmittance,
+                inout float weightedT, inout float weight) {
   float bottom = sky.clouds.x, top = sky.clouds.y;
   float thickness = top - bottom;
   float phase = 0.8f * henyeyGreenstein(0.75f, nu) + 0.2f * henyeyGreenstein(-0.2f, nu);
-  float stretchLength = stretch.y - stretch.x;
   float across = sqrt(max(1.0f - mu * mu, 0.0f));
-  uint segments = uint(clamp(ceil(stretchLength * across / (1.5f * thickness)), 1.0f, sky.cloudShape.z));
-  float hPrevious = altitudeAlong(R, h, mu, stretch.x);
-  float tPrevious = stretch.x;
-  for (uint i = 1u; i <= segments; ++i) {
-    float f = float(i) / float(segments);
-    float t = stretch.x + stretchLength * f * f;
+  uint firstSegments = layerSegments(first, across);
+  uint segments = firstSegments + (count > 1u ? layerSegments(second, across) : 0u);
+  float hPrevious = altitudeAlong(R, h, mu, first.x);
+  float tPrevious = first.x;
+  for (uint k = 0u; k < segments; ++k) {
+    bool inFirst = k < firstSegments;
+    vec2 stretch = inFirst ? first : second;
+    uint i = inFirst ? k + 1u : k + 1u - firstSegments;
+    float stretchSegments = float(inFirst ? firstSegments : segments - firstSegments);
+    if (i == 1u) {  // the start of a stretch
+      tPrevious = stretch.x;
+      hPrevious = altitudeAlong(R, h, mu, stretch.x);
+    }
+    float f = float(i) / stretchSegments;
+    float t = stretch.x + (stretch.y - stretch.x) * f * f;
     float hNext = altitudeAlong(R, h, mu, t);
     float tMid = 0.5f * (tPrevious + t);
     float segment = t - tPrevious;
@@ -313,9 +329,8 @@ void cloudsAlong(ViewRay ray, out vec3 light, out float transmittance, out float
       vec3 sunLight = eclipse * sunTransmittanceTable(a, cloudH, muSLayer) * a.ozoneSun.y;
       vec3 skyLight = eclipse * skyIrradianceAt(muSLayer);
       float weightedT = 0.0f, weight = 0.0f;
-      marchLayer(ray.dir, R, h, mu, first, nu, muS, r, sunLight, skyLight, light, transmittance, weightedT, weight);
-      if (stretches > 1u && transmittance >= 0.01f)
-        marchLayer(ray.dir, R, h, mu, second, nu, muS, r, sunLight, skyLight, light, transmittance, weightedT, weight);
+      marchLayer(ray.dir, R, h, mu, first, second, stretches, nu, muS, r, sunLight, skyLight, light, transmittance,
+                 weightedT, weight);
       if (weight > 0.0f) tCloud = weightedT / weight;
     }
   }
