@@ -20,8 +20,8 @@ layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmitta
 layout(set = 0, binding = kSkyBindingClouds) uniform samplerCube cloudCover;
 layout(set = 0, binding = kSkyBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
 layout(set = 0, binding = kSkyBindingSkyView) uniform sampler2D skyView;
-layout(set = 0, binding = kSkyBindingAerialLight) uniform sampler2DArray aerialLight;
-layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler2DArray aerialTransmittance;
+layout(set = 0, binding = kSkyBindingAerialLight) uniform sampler3D aerialLight;
+layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler3D aerialTransmittance;
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
@@ -210,23 +210,15 @@ void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, u
 }
 
 // The tables' atmosphere between the camera and distance t along the pixel's ray (screen
-// position uv): light scattered toward the camera and transmittance, from the two slices of the
-// aerial-perspective volume around t (in front of the first, toward nothing at the camera).
+// position uv): light scattered toward the camera and transmittance, the aerial-perspective
+// volume filtered between the slices around t (in front of the first, toward the camera's
+// slice of no air) with one read of each.
 void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
-  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f);
-  float k0 = floor(slice);
-  float f = slice - k0;
-  // Four reads whatever the case (on a CPU device every branch's reads cost every pixel): in
-  // front of the first slice (k0 = −1) the near end is the camera's nothing; at the last, both
-  // ends are the last slice (f = 0 there).
-  float near = max(k0, 0.0f), far = min(k0 + 1.0f, float(kAerialSize) - 1.0f);
-  vec3 light0 = textureLod(aerialLight, vec3(uv, near), 0.0f).rgb;
-  vec3 transmittance0 = textureLod(aerialTransmittance, vec3(uv, near), 0.0f).rgb;
-  vec3 light1 = textureLod(aerialLight, vec3(uv, far), 0.0f).rgb;
-  vec3 transmittance1 = textureLod(aerialTransmittance, vec3(uv, far), 0.0f).rgb;
-  bool atCamera = k0 < 0.0f;
-  light = mix(atCamera ? vec3(0.0f) : light0, light1, f);
-  transmittance = mix(atCamera ? vec3(1.0f) : transmittance0, transmittance1, f);
+  // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
+  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
+  vec3 uvw = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
+  light = textureLod(aerialLight, uvw, 0.0f).rgb;
+  transmittance = textureLod(aerialTransmittance, uvw, 0.0f).rgb;
 }
 
 // A view ray through a point of the screen (in pixels) and where it ends: at the drawn surface

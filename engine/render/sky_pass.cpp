@@ -101,10 +101,12 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), 0, 0)};
   skyView_ = {context,
               vk::createImage2D(context, {gpu::kSkyViewWidth, gpu::kSkyViewHeight}, kTableFormat, kTableUsage)};
-  aerialLight_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize,
-                                                  kTableFormat, kTableUsage)};
-  aerialTransmittance_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize},
-                                                          gpu::kAerialSize, kTableFormat, kTableUsage)};
+  // The aerial-perspective volume: the camera's slice (no air) and kAerialSize more
+  // (shaders/aerial_perspective.comp), 3D so that the compose filters between slices in one read.
+  aerialLight_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize + 1,
+                                             kTableFormat, kTableUsage)};
+  aerialTransmittance_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize},
+                                                     gpu::kAerialSize + 1, kTableFormat, kTableUsage)};
   tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
   tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
