@@ -188,7 +188,10 @@ void main() {
 #else
   vec3 cloudComposite;
   float cloudTransmittance, cloudShadowFactor;
-  upsampledClouds(pixel, ray, cloudComposite, cloudTransmittance, cloudShadowFactor);
+  cloudComposite = vec3(0.0f);
+  cloudTransmittance = 1.0f;
+  cloudShadowFactor = 1.0f;
+  if (kSpecClouds) upsampledClouds(pixel, ray, cloudComposite, cloudTransmittance, cloudShadowFactor);
   if (geometry) surface *= cloudShadowFactor;
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;

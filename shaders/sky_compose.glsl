@@ -264,8 +264,11 @@ ViewRay viewRay(vec2 screenPoint, float depth) {
   return ray;
 }
 
-// Whether the frame draws clouds (the preset has them, they are on, and there is air).
-bool cloudsDrawn() { return sky.cameraPlanet.w > 0.5f && sky.atmosphere.radii.w > 0.5f; }
+// Whether the frame draws clouds (the preset has them, they are on, and there is air). Also as a
+// specialization constant (SkyPass::cloudsDrawn), so that a pipeline without them has no cloud
+// code: lavapipe runs every branch for every pixel.
+layout(constant_id = 1) const bool kSpecClouds = true;
+bool cloudsDrawn() { return kSpecClouds && sky.cameraPlanet.w > 0.5f && sky.atmosphere.radii.w > 0.5f; }
 
 // Cloud shadow on the drawn surface, as a factor of its light: the column where the ray toward
 // the sun crosses the middle of the layer, crossed at the sun's slant (the cloud's width caps

@@ -86,7 +86,7 @@ SkyMode parseSkyMode(std::string_view name) {
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
                  const SkySettings& settings, bool eclipses)
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
-  eclipseSpecialization_[0] = eclipses ? 1u : 0u;
+  specialization_[0][0] = specialization_[1][0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
     uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -148,20 +148,27 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   makePipelines();
 }
 
+bool SkyPass::cloudsDrawn() const { return settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled; }
+
 void SkyPass::makePipelines() {
-  if (settings_.mode == SkyMode::Tables && !tablesCompose_.get()) {
-    tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(),
-                                                                    eclipseSpecialization_)};
-    cloudsPass_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(),
-                                                                 eclipseSpecialization_)};
-    skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
-    aerialBuild_ = {context_,
-                    vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+  const bool clouds = cloudsDrawn();
+  const uint32_t* constants = specialization_[clouds ? 1 : 0];
+  if (settings_.mode == SkyMode::Tables) {
+    if (!skyViewBuild_.get()) {
+      skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
+      aerialBuild_ = {context_,
+                      vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+    }
+    if (!tablesCompose_[clouds].get())
+      tablesCompose_[clouds] = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), {constants, 2})};
+    if (clouds && !cloudsPass_.get())
+      cloudsPass_ = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(), {constants, 1})};
   }
-  if (settings_.mode == SkyMode::Reference && !referenceCompose_.get())
-    referenceCompose_ = {context_,
-                         vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp, layout_.get(),
-                                                             eclipseSpecialization_)};
+  if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get())
+    referenceCompose_[clouds] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp,
+                                                                               layout_.get(), {constants, 2})};
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
@@ -207,7 +214,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.camera = glm::vec4(float(view.altitudeM), float(view.nearPlaneM), float(settings_.exposure), float(view.timeS));
   u.forward = glm::vec4(glm::vec3(view.forward), float(settings_.viewSamples));
   u.sunLocal = glm::vec4(glm::vec3(view.sunLocal), float(planet_.stars.brightness));
-  const bool clouds = settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled;
+  const bool clouds = cloudsDrawn();
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
   u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(view.localToPlanet), view.sunAngularRadiusRad);
   tables_.clouds().writeUniforms(u, view.timeS);
@@ -237,9 +244,17 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const uint32_t group = gpu::kSkyWorkgroupSize;
   const bool tables = settings_.mode == SkyMode::Tables;
+  const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
   if (timer) timer->begin(cmd, tables ? "sky" : "compose");
+  if (!cloudImagesInitialised_) {
+    // New images start undefined and stay in GENERAL, in every mode: the compose's descriptor set
+    // names them (a compose without clouds still binds them, its reads specialized away).
+    for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_})
+      vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    cloudImagesInitialised_ = true;
+  }
   if (tables) {
-    const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     if (!tablesInitialised_) {
       // The tables start undefined and stay in GENERAL: written by the builds, sampled after.
       for (vk::Owned<vk::Image>* image : {&skyView_, &aerialLight_, &aerialTransmittance_})
@@ -259,15 +274,10 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
     // The cloud pass and the compose sample what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  }
+  const bool clouds = cloudsDrawn();
+  if (tables && clouds) {
     if (timer) timer->next(cmd, "clouds");
-    if (!cloudImagesInitialised_) {
-      // New images start undefined and stay in GENERAL (the earlier barrier ordered this after
-      // the previous frame's compose, which read the old contents).
-      for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_})
-        vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
-                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-      cloudImagesInitialised_ = true;
-    }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
     const uint32_t samplesX = (width_ + cloudScale_ - 1) / cloudScale_,
@@ -275,9 +285,10 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdDispatch(cmd, (samplesX + group - 1) / group, (samplesY + group - 1) / group, 1);
     // The compose reads what the cloud pass wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    if (timer) timer->next(cmd, "compose");
   }
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tables ? tablesCompose_.get() : referenceCompose_.get());
+  if (timer && tables) timer->next(cmd, "compose");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    tables ? tablesCompose_[clouds].get() : referenceCompose_[clouds].get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
   vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
   if (timer) timer->end(cmd);

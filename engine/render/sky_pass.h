@@ -120,9 +120,13 @@ class SkyPass {
   // Makes the pipelines the settings' mode needs (compiling is milliseconds to a second on
   // lavapipe, so the mode not in use costs nothing).
   void makePipelines();
+  // Whether frames draw clouds (the settings', with the planet's clouds and air): without them
+  // the compose pipelines leave the cloud code out (sky.comp's kSpecClouds: lavapipe would run
+  // it for every pixel) and the cloud pass is not dispatched.
+  bool cloudsDrawn() const;
 
   vk::Context& context_;
-  uint32_t eclipseSpecialization_[1] = {1u};  // sky.comp's kSpecEclipses
+  uint32_t specialization_[2][2] = {{1u, 0u}, {1u, 1u}};  // [clouds]: sky.comp's kSpecEclipses, kSpecClouds
   PlanetDescription planet_;
   const SkyTables& tables_;
   SkySettings settings_;
@@ -136,8 +140,9 @@ class SkyPass {
   vk::Owned<VkDescriptorSetLayout> setLayout_;
   vk::Owned<VkDescriptorPool> pool_;
   vk::Owned<VkPipelineLayout> layout_;
-  vk::Owned<VkPipeline> tablesCompose_;             // sky.comp
-  vk::Owned<VkPipeline> referenceCompose_;          // sky.comp with SKY_REFERENCE
+  // Made when first needed, [0] without clouds, [1] with (a frame in flight may still use the other).
+  vk::Owned<VkPipeline> tablesCompose_[2];          // sky.comp
+  vk::Owned<VkPipeline> referenceCompose_[2];       // sky.comp with SKY_REFERENCE
   vk::Owned<VkPipeline> cloudsPass_;                // sky_clouds.comp (tables mode)
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
   // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
