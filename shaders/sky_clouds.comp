@@ -19,7 +19,7 @@ layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform writeonly imag
 layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2D cloudSampleEnd;
 
 // The largest ratio of distances within a block of pixels that are taken for one surface.
-const float kOneSurfaceRatio = 1.25f;
+const float kOneSurfaceRatio = 1.05f;
 
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);

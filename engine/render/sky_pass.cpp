@@ -60,14 +60,16 @@ constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
+}  // namespace
+
 void validateSkySettings(const SkySettings& settings) {
   if (settings.viewSamples < 2 || settings.viewSamples > 256)
     throw Error(fmt::format("atmosphere samples {} are outside 2..256", settings.viewSamples));
   if (!(settings.exposure > 0.0 && std::isfinite(settings.exposure)))
     throw Error(fmt::format("exposure {} must be a positive number", settings.exposure));
+  if (settings.cloudScale > 2)
+    throw Error(fmt::format("cloud pass scale {} is not 0 (by the view), 1 or 2", settings.cloudScale));
 }
-
-}  // namespace
 
 uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAngleRad) {
   // A cover texel straight below spans coverTexelM / (aboveCloudsM · pixelAngleRad) pixels.
@@ -218,8 +220,10 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
   u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(view.localToPlanet), view.sunAngularRadiusRad);
   tables_.clouds().writeUniforms(u, view.timeS);
-  cloudScale_ = cloudPassScale(view.altitudeM - planet_.clouds.topM, double(u.cloudShape.x) * planet_.radiusM,
-                               view.pixelAngleRad);
+  cloudScale_ = settings_.cloudScale != 0
+                    ? settings_.cloudScale
+                    : cloudPassScale(view.altitudeM - planet_.clouds.topM, double(u.cloudShape.x) * planet_.radiusM,
+                                     view.pixelAngleRad);
   u.cloudShape.w = float(cloudScale_);
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);

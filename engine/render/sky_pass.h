@@ -54,7 +54,13 @@ struct SkySettings {
   uint32_t viewSamples = 64;  // reference mode: samples along each pixel's ray (split over cloud crossings)
   double exposure = 10.0;     // HDR scale before the tonemap curve
   bool clouds = true;         // draw the preset's clouds (if it has any)
+  // The cloud pass's pixels per sample along each axis: 0 picks 2 or 1 by the view
+  // (cloudPassScale); 1 or 2 forces it (the tests hold the two against each other).
+  uint32_t cloudScale = 0;
 };
+// Throws planet::Error naming the first bad field: samples outside 2..256, a non-positive
+// exposure, a cloud scale past 2.
+void validateSkySettings(const SkySettings& settings);
 
 // What the compose pass needs to know about the frame (local frame of the terrain pass:
 // camera at (0, 0, altitude) above the anchor, +z up).
@@ -109,7 +115,7 @@ class SkyPass {
 
   const SkySettings& settings() const { return settings_; }
   // Takes effect at the next prepare() (every field is a per-frame uniform or a pipeline already
-  // made or made here); throws planet::Error for samples outside 2..256 or a non-positive exposure.
+  // made or made here); throws planet::Error for bad settings (validateSkySettings).
   void setSettings(const SkySettings& settings);
 
   // For tests: this frame's sky-view table (rgb, row-major kSkyViewWidth × kSkyViewHeight), after
