@@ -15,9 +15,8 @@ layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 layout(std430, set = 0, binding = kSkyTableBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
 layout(set = 0, binding = kSkyTableBindingTransmittance) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = kSkyTableBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
-layout(set = 0, binding = kSkyTableBindingAerialLight, rgba16f) uniform writeonly image2DArray aerialLight;
-layout(set = 0, binding = kSkyTableBindingAerialTransmittance, rgba16f) uniform writeonly image2DArray
-    aerialTransmittance;
+layout(set = 0, binding = kSkyTableBindingAerialLight, rgba16f) uniform writeonly image3D aerialLight;
+layout(set = 0, binding = kSkyTableBindingAerialTransmittance, rgba16f) uniform writeonly image3D aerialTransmittance;
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
@@ -60,6 +59,10 @@ void main() {
   vec3 phaseM = miePhases(a, nu);
   vec3 single = vec3(0.0f), total = vec3(0.0f), transmittance = vec3(1.0f);
   float done = tStart;
+  // Slice 0 is the camera (no air yet), so that the compose reads any distance with one filtered
+  // fetch (sky_aerial.glsl); slice k + 1 ends where the k-th of the column's stretch does.
+  imageStore(aerialLight, ivec3(column, 0), vec4(0.0f));
+  imageStore(aerialTransmittance, ivec3(column, 0), vec4(1.0f));
   for (uint k = 0u; k < kAerialSize; ++k) {
     float target = air ? min(aerialSliceEnd(k, columnStretch), stretch.y) : 0.0f;
     if (target > done) {
@@ -70,7 +73,7 @@ void main() {
       }
       done = target;
     }
-    imageStore(aerialLight, ivec3(column, k), vec4(total, 0.0f));
-    imageStore(aerialTransmittance, ivec3(column, k), vec4(transmittance, 0.0f));
+    imageStore(aerialLight, ivec3(column, k + 1u), vec4(total, 0.0f));
+    imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(transmittance, 0.0f));
   }
 }

@@ -15,15 +15,20 @@
 
 bool aerialFromAbove() { return sky.aerial.x > 0.5f; }
 
-// The stretch [x, y] of distances from the camera that a column's slices split (from above).
-vec2 aerialColumnStretch(float R, float h, float mu, float hGround) {
-  vec2 stretch = atmosphereStretch(sky.atmosphere, h, mu, hGround);
+// The stretch [x, y] of distances from the camera that a column's slices split (from above),
+// from the ray's stretch through the air (atmosphereStretch) and its hits on the ground sphere
+// (raySphere at hGround), for a caller that has them already.
+vec2 aerialColumnStretchOf(vec2 stretch, vec2 ground, float R, float h, float mu) {
   if (stretch.y <= stretch.x) return vec2(0.0f, -1.0f);
-  vec2 ground = raySphere(R, h, mu, hGround);
   bool hitsGround = mu < 0.0f && ground.x >= 0.0f;
   float closest = -(R + h) * mu;  // where a ray going down passes closest to the centre
   float end = hitsGround ? stretch.y : (mu < 0.0f ? clamp(closest, stretch.x, stretch.y) : stretch.y);
   return vec2(stretch.x, end);
+}
+
+vec2 aerialColumnStretch(float R, float h, float mu, float hGround) {
+  return aerialColumnStretchOf(atmosphereStretch(sky.atmosphere, h, mu, hGround), raySphere(R, h, mu, hGround), R, h,
+                               mu);
 }
 
 // The continuous slice coordinate of distance t from the camera: slice k's far end at k, the

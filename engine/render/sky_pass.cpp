@@ -11,6 +11,7 @@
 #include "render/sky_tables.h"
 #include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
+#include "spv/sky_clouds.comp.h"
 #include "spv/sky_reference.comp.h"
 #include "spv/sky_view.comp.h"
 #include "vk/commands.h"
@@ -36,6 +37,8 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // sky view
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial light
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial transmittance
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud light (the cloud pass writes it, the compose reads it)
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud end (likewise)
 };
 
 // The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
@@ -48,18 +51,31 @@ constexpr VkDescriptorType kTableBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial transmittance
 };
 
+// The cloud pass's images (shaders/shared/sky_params.h, kSkyBindingCloudLight and kSkyBindingCloudEnd):
+// distances need float's range and precision, light and transmittance do with half floats.
+constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
 constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+}  // namespace
 
 void validateSkySettings(const SkySettings& settings) {
   if (settings.viewSamples < 2 || settings.viewSamples > 256)
     throw Error(fmt::format("atmosphere samples {} are outside 2..256", settings.viewSamples));
   if (!(settings.exposure > 0.0 && std::isfinite(settings.exposure)))
     throw Error(fmt::format("exposure {} must be a positive number", settings.exposure));
+  if (settings.cloudScale > 2)
+    throw Error(fmt::format("cloud pass scale {} is not 0 (by the view), 1 or 2", settings.cloudScale));
 }
 
-}  // namespace
+uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAngleRad) {
+  // A cover texel straight below spans coverTexelM / (aboveCloudsM · pixelAngleRad) pixels.
+  if (aboveCloudsM <= 0.0) return 2;
+  return coverTexelM >= kHalfResolutionTexelPixels * aboveCloudsM * pixelAngleRad ? 2 : 1;
+}
 
 std::string_view skyModeName(SkyMode mode) { return mode == SkyMode::Reference ? "reference" : "tables"; }
 
@@ -72,7 +88,7 @@ SkyMode parseSkyMode(std::string_view name) {
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
                  const SkySettings& settings, bool eclipses)
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
-  eclipseSpecialization_[0] = eclipses ? 1u : 0u;
+  specialization_[0][0] = specialization_[1][0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
     uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -87,10 +103,12 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), 0, 0)};
   skyView_ = {context,
               vk::createImage2D(context, {gpu::kSkyViewWidth, gpu::kSkyViewHeight}, kTableFormat, kTableUsage)};
-  aerialLight_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize,
-                                                  kTableFormat, kTableUsage)};
-  aerialTransmittance_ = {context, vk::createImage2DArray(context, {gpu::kAerialSize, gpu::kAerialSize},
-                                                          gpu::kAerialSize, kTableFormat, kTableUsage)};
+  // The aerial-perspective volume: the camera's slice (no air) and kAerialSize more
+  // (shaders/aerial_perspective.comp), 3D so that the compose filters between slices in one read.
+  aerialLight_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize + 1,
+                                             kTableFormat, kTableUsage)};
+  aerialTransmittance_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize},
+                                                     gpu::kAerialSize + 1, kTableFormat, kTableUsage)};
   tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
   tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
@@ -132,18 +150,27 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   makePipelines();
 }
 
+bool SkyPass::cloudsDrawn() const { return settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled; }
+
 void SkyPass::makePipelines() {
-  if (settings_.mode == SkyMode::Tables && !tablesCompose_.get()) {
-    tablesCompose_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(),
-                                                                    eclipseSpecialization_)};
-    skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
-    aerialBuild_ = {context_,
-                    vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+  const bool clouds = cloudsDrawn();
+  const uint32_t* constants = specialization_[clouds ? 1 : 0];
+  if (settings_.mode == SkyMode::Tables) {
+    if (!skyViewBuild_.get()) {
+      skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
+      aerialBuild_ = {context_,
+                      vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+    }
+    if (!tablesCompose_[clouds].get())
+      tablesCompose_[clouds] = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), {constants, 2})};
+    if (clouds && !cloudsPass_.get())
+      cloudsPass_ = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(), {constants, 1})};
   }
-  if (settings_.mode == SkyMode::Reference && !referenceCompose_.get())
-    referenceCompose_ = {context_,
-                         vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp, layout_.get(),
-                                                             eclipseSpecialization_)};
+  if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get())
+    referenceCompose_[clouds] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp,
+                                                                               layout_.get(), {constants, 2})};
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
@@ -155,6 +182,19 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
   }
   width_ = hdr.extent.width;
   height_ = hdr.extent.height;
+  // The targets' size: the cloud pass runs at full resolution from far away (cloudPassScale).
+  const VkExtent2D extent{width_, height_};
+  cloudLight_.reset();
+  cloudEnd_.reset();
+  cloudLight_ = {context_, vk::createImage2D(context_, extent, kCloudLightFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
+  cloudEnd_ = {context_, vk::createImage2D(context_, extent, kCloudEndFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
+  cloudImagesInitialised_ = false;
+  for (VkDescriptorSet set : sets_) {
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudLight, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             cloudLight_->view, VK_IMAGE_LAYOUT_GENERAL);
+    vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudEnd, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cloudEnd_->view,
+                             VK_IMAGE_LAYOUT_GENERAL);
+  }
 }
 
 void SkyPass::setSettings(const SkySettings& settings) {
@@ -176,10 +216,15 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.camera = glm::vec4(float(view.altitudeM), float(view.nearPlaneM), float(settings_.exposure), float(view.timeS));
   u.forward = glm::vec4(glm::vec3(view.forward), float(settings_.viewSamples));
   u.sunLocal = glm::vec4(glm::vec3(view.sunLocal), float(planet_.stars.brightness));
-  const bool clouds = settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled;
+  const bool clouds = cloudsDrawn();
   u.cameraPlanet = glm::vec4(glm::vec3(view.cameraPlanet), clouds ? 1.0f : 0.0f);
   u.eclipse = eclipseGpuParams(view.occluders, glm::transpose(view.localToPlanet), view.sunAngularRadiusRad);
   tables_.clouds().writeUniforms(u, view.timeS);
+  cloudScale_ = settings_.cloudScale != 0
+                    ? settings_.cloudScale
+                    : cloudPassScale(view.altitudeM - planet_.clouds.topM, double(u.cloudShape.x) * planet_.radiusM,
+                                     view.pixelAngleRad);
+  u.cloudShape.w = float(cloudScale_);
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
@@ -201,11 +246,19 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
 }
 
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
-  if (timer) timer->begin(cmd, "sky");
   const uint32_t group = gpu::kSkyWorkgroupSize;
   const bool tables = settings_.mode == SkyMode::Tables;
+  const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  if (timer) timer->begin(cmd, tables ? "sky" : "compose");
+  if (!cloudImagesInitialised_) {
+    // New images start undefined and stay in GENERAL, in every mode: the compose's descriptor set
+    // names them (a compose without clouds still binds them, its reads specialized away).
+    for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_})
+      vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    cloudImagesInitialised_ = true;
+  }
   if (tables) {
-    const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     if (!tablesInitialised_) {
       // The tables start undefined and stay in GENERAL: written by the builds, sampled after.
       for (vk::Owned<vk::Image>* image : {&skyView_, &aerialLight_, &aerialTransmittance_})
@@ -220,12 +273,26 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                             nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
     vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+    if (timer) timer->next(cmd, "aerial");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
-    // The compose samples what the builds wrote.
+    // The cloud pass and the compose sample what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tables ? tablesCompose_.get() : referenceCompose_.get());
+  const bool clouds = cloudsDrawn();
+  if (tables && clouds) {
+    if (timer) timer->next(cmd, "clouds");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    const uint32_t samplesX = (width_ + cloudScale_ - 1) / cloudScale_,
+                   samplesY = (height_ + cloudScale_ - 1) / cloudScale_;
+    vkCmdDispatch(cmd, (samplesX + group - 1) / group, (samplesY + group - 1) / group, 1);
+    // The compose reads what the cloud pass wrote.
+    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  }
+  if (timer && tables) timer->next(cmd, "compose");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    tables ? tablesCompose_[clouds].get() : referenceCompose_[clouds].get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
   vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
   if (timer) timer->end(cmd);

@@ -38,12 +38,29 @@ enum class SkyMode { Tables, Reference };
 std::string_view skyModeName(SkyMode mode);
 SkyMode parseSkyMode(std::string_view name);
 
+// The cloud pass's pixels per sample along each axis (shaders/sky_clouds.comp): 2, a quarter of
+// the rays, unless the cloud cover's finest detail is small on the screen, which happens only
+// far above the layer: where its finest texel straight below, coverTexelM wide, spans fewer than
+// kHalfResolutionTexelPixels pixels (aboveCloudsM above the layer's top, pixelAngleRad per
+// pixel), 1. Upsampled from half resolution, clouds a few pixels wide lose their outline (the
+// display image differed from the full resolution's by 63 dB PSNR from 200 km, 58 dB from 400
+// km, 49 dB from 1,000 km, Earth at 640×360); with 16 the pass runs at full resolution above
+// ~530 km there (Earth's 512² cover, a 60° field of view).
+constexpr double kHalfResolutionTexelPixels = 16.0;
+uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAngleRad);
+
 struct SkySettings {
   SkyMode mode = SkyMode::Tables;
   uint32_t viewSamples = 64;  // reference mode: samples along each pixel's ray (split over cloud crossings)
   double exposure = 10.0;     // HDR scale before the tonemap curve
   bool clouds = true;         // draw the preset's clouds (if it has any)
+  // The cloud pass's pixels per sample along each axis: 0 picks 2 or 1 by the view
+  // (cloudPassScale); 1 or 2 forces it (the tests hold the two against each other).
+  uint32_t cloudScale = 0;
 };
+// Throws planet::Error naming the first bad field: samples outside 2..256, a non-positive
+// exposure, a cloud scale past 2.
+void validateSkySettings(const SkySettings& settings);
 
 // What the compose pass needs to know about the frame (local frame of the terrain pass:
 // camera at (0, 0, altitude) above the anchor, +z up).
@@ -75,8 +92,10 @@ struct SkyView {
 
 class SkyPass {
  public:
-  // Timing scopes a frame records at most: "sky" (the per-frame tables and the compose).
-  static constexpr uint32_t kTimingScopes = 1;
+  // Timing scopes a frame records at most: "sky" (the sky-view table), "aerial" (the
+  // aerial-perspective volume), "clouds" (the cloud pass, half resolution) and "compose" (the
+  // reference mode records only "compose").
+  static constexpr uint32_t kTimingScopes = 4;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
   // `eclipses` false leaves the eclipse code out of the compose shader (no other body).
@@ -96,7 +115,7 @@ class SkyPass {
 
   const SkySettings& settings() const { return settings_; }
   // Takes effect at the next prepare() (every field is a per-frame uniform or a pipeline already
-  // made or made here); throws planet::Error for samples outside 2..256 or a non-positive exposure.
+  // made or made here); throws planet::Error for bad settings (validateSkySettings).
   void setSettings(const SkySettings& settings);
 
   // For tests: this frame's sky-view table (rgb, row-major kSkyViewWidth × kSkyViewHeight), after
@@ -107,23 +126,30 @@ class SkyPass {
   // Makes the pipelines the settings' mode needs (compiling is milliseconds to a second on
   // lavapipe, so the mode not in use costs nothing).
   void makePipelines();
+  // Whether frames draw clouds (the settings', with the planet's clouds and air): without them
+  // the compose pipelines leave the cloud code out (sky.comp's kSpecClouds: lavapipe would run
+  // it for every pixel) and the cloud pass is not dispatched.
+  bool cloudsDrawn() const;
 
   vk::Context& context_;
-  uint32_t eclipseSpecialization_[1] = {1u};  // sky.comp's kSpecEclipses
+  uint32_t specialization_[2][2] = {{1u, 0u}, {1u, 1u}};  // [clouds]: sky.comp's kSpecEclipses, kSpecClouds
   PlanetDescription planet_;
   const SkyTables& tables_;
   SkySettings settings_;
   gpu::SkyUniforms uniformData_{};
   uint32_t slot_ = 0;  // of the last prepare()
   uint32_t width_ = 0, height_ = 0;
+  uint32_t cloudScale_ = 2;  // of the last prepare() (cloudPassScale)
   // In the order of creation (destroyed in reverse).
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];  // per frame slot, host-visible
   vk::Owned<VkSampler> depthSampler_;
   vk::Owned<VkDescriptorSetLayout> setLayout_;
   vk::Owned<VkDescriptorPool> pool_;
   vk::Owned<VkPipelineLayout> layout_;
-  vk::Owned<VkPipeline> tablesCompose_;             // sky.comp
-  vk::Owned<VkPipeline> referenceCompose_;          // sky.comp with SKY_REFERENCE
+  // Made when first needed, [0] without clouds, [1] with (a frame in flight may still use the other).
+  vk::Owned<VkPipeline> tablesCompose_[2];          // sky.comp
+  vk::Owned<VkPipeline> referenceCompose_[2];       // sky.comp with SKY_REFERENCE
+  vk::Owned<VkPipeline> cloudsPass_;                // sky_clouds.comp (tables mode)
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
   // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
   vk::Owned<vk::Image> skyView_;
@@ -136,6 +162,11 @@ class SkyPass {
   vk::Owned<VkPipeline> aerialBuild_;
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
   bool tablesInitialised_ = false;                       // the table images left UNDEFINED for GENERAL
+  // The cloud pass's samples (setTargets makes them the targets' size; a frame uses the top-left
+  // (width / scale) × (height / scale) of them, cloudScale_), in GENERAL.
+  vk::Owned<vk::Image> cloudLight_;
+  vk::Owned<vk::Image> cloudEnd_;
+  bool cloudImagesInitialised_ = false;
 };
 
 }  // namespace planet

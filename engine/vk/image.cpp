@@ -33,8 +33,9 @@ uint32_t formatTexelSize(VkFormat format) {
 namespace {
 
 Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                  VkImageViewType viewType, bool cube = false, uint32_t mipLevels = 1) {
-  if (extent.width == 0 || extent.height == 0 || layers == 0) throw Error("cannot create an image of size 0");
+                  VkImageViewType viewType, bool cube = false, uint32_t mipLevels = 1, uint32_t slices = 1) {
+  if (extent.width == 0 || extent.height == 0 || layers == 0 || slices == 0)
+    throw Error("cannot create an image of size 0");
   if (mipLevels == 0 || (std::max(extent.width, extent.height) >> (mipLevels - 1)) == 0)
     throw Error("cannot create " + std::to_string(mipLevels) + " mip levels for an image of " +
                 std::to_string(extent.width) + "x" + std::to_string(extent.height));
@@ -44,10 +45,11 @@ Image createImage(Context& context, VkExtent2D extent, uint32_t layers, VkFormat
   image->extent = extent;
   image->layers = layers;
   image->mipLevels = mipLevels;
+  image->depth = slices;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
+  info.imageType = viewType == VK_IMAGE_VIEW_TYPE_3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   info.format = format;
-  info.extent = {extent.width, extent.height, 1};
+  info.extent = {extent.width, extent.height, slices};
   info.mipLevels = mipLevels;
   info.arrayLayers = layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -82,6 +84,10 @@ Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImag
 Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
                          VkImageUsageFlags usage) {
   return createImage(context, extent, layers, format, usage, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
+}
+
+Image createImage3D(Context& context, VkExtent2D extent, uint32_t depth, VkFormat format, VkImageUsageFlags usage) {
+  return createImage(context, extent, 1, format, usage, VK_IMAGE_VIEW_TYPE_3D, false, 1, depth);
 }
 
 Image createImageCube(Context& context, uint32_t size, VkFormat format, VkImageUsageFlags usage,
@@ -178,12 +184,13 @@ void recordMipChain(VkCommandBuffer cmd, Image& image, VkImageLayout level0, VkP
 static VkBufferImageCopy fullCopy(const Image& image) {
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, image.layers};
-  region.imageExtent = {image.extent.width, image.extent.height, 1};
+  region.imageExtent = {image.extent.width, image.extent.height, image.depth};
   return region;
 }
 
 void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout) {
-  size_t expected = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
+  size_t expected =
+      size_t(image.extent.width) * image.extent.height * image.depth * image.layers * formatTexelSize(image.format);
   if (bytes != expected)
     throw Error("image upload of " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected));
   const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Upload));
@@ -203,7 +210,8 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
 }
 
 std::vector<uint8_t> readbackImage(Context& context, Image& image) {
-  size_t bytes = size_t(image.extent.width) * image.extent.height * image.layers * formatTexelSize(image.format);
+  size_t bytes =
+      size_t(image.extent.width) * image.extent.height * image.depth * image.layers * formatTexelSize(image.format);
   const Owned<Buffer> staging(context, createBuffer(context, bytes, 0, MemoryUsage::Readback));
   std::vector<uint8_t> texels(bytes);
   submitAndWait(context, [&](VkCommandBuffer cmd) {

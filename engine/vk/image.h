@@ -21,6 +21,7 @@ struct Image {
   VkImageView cubeView = VK_NULL_HANDLE;             // createImageCube only: the six layers as a cube
   uint32_t layers = 1;                               // array layers
   uint32_t mipLevels = 1;                            // `view` shows level 0 only; `cubeView` every level
+  uint32_t depth = 1;                                // slices (createImage3D only)
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
 };
 
@@ -31,6 +32,8 @@ Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImag
 // An array of `layers` 2D images with one VK_IMAGE_VIEW_TYPE_2D_ARRAY view over all of them (also for 1).
 Image createImage2DArray(Context& context, VkExtent2D extent, uint32_t layers, VkFormat format,
                          VkImageUsageFlags usage);
+// A 3D image of `depth` slices with a VK_IMAGE_VIEW_TYPE_3D view (sampled with filtering across slices).
+Image createImage3D(Context& context, VkExtent2D extent, uint32_t depth, VkFormat format, VkImageUsageFlags usage);
 // Six square layers (+x, −x, +y, −y, +z, −z) that can be sampled as a cube map: `view` is the
 // 2D-array view of mip level 0 (for storage writes), `cubeView` the cube view of all
 // `mipLevels` levels (for samplerCube; the caller fills the smaller levels).
@@ -57,7 +60,7 @@ void transitionLevels(VkCommandBuffer cmd, const Image& image, uint32_t firstLev
 void recordMipChain(VkCommandBuffer cmd, Image& image, VkImageLayout level0, VkPipelineStageFlags2 srcStage,
                     VkAccessFlags2 srcAccess, VkPipelineStageFlags2 readers);
 
-// Upload and readback cover every layer, tightly packed, layer after layer.
+// Upload and readback cover every layer (or slice), tightly packed, layer after layer.
 // Fills the image with tightly packed texels and leaves it in `finalLayout` (blocking).
 void uploadImage(Context& context, Image& image, const void* texels, size_t bytes, VkImageLayout finalLayout);
 

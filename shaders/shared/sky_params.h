@@ -24,8 +24,14 @@ GPU_CONST uint kSkyBindingTransmittance = 3u;        // sampler2D: the transmitt
 GPU_CONST uint kSkyBindingClouds = 4u;               // samplerCube: the three cloud cover images (rgb)
 GPU_CONST uint kSkyBindingMultipleScattering = 5u;   // sampler2D: Ψ_ms (the reference march)
 GPU_CONST uint kSkyBindingSkyView = 6u;              // sampler2D: the sky-view table (the tables' compose)
-GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler2DArray: in-scattered light per froxel
-GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler2DArray: transmittance per froxel
+GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler3D: in-scattered light per froxel
+GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler3D: transmittance per froxel
+// The cloud pass's results (sky_clouds.comp writes one texel per SkyUniforms::cloudShape.w² pixels from the top
+// left corner, sky.comp reads them):
+GPU_CONST uint kSkyBindingCloudLight = 9u;  // image2D rgba16f: rgb the cloud's light composited with the air in front
+                                            // of it, a its transmittance
+GPU_CONST uint kSkyBindingCloudEnd = 10u;   // image2D rgba32f: x the distance to the drawn surface (kInfinity: none),
+                                            // y the ray's path through the layer before its end, z the shadow there
 
 // The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
 // aerial_perspective.comp before the compose pass, from the same SkyUniforms.
@@ -36,8 +42,8 @@ GPU_CONST uint kSkyViewWidth = 96u;
 GPU_CONST uint kSkyViewHeight = 108u;
 GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic from inside the air)
 // Aerial-perspective volume: kAerialSize² columns over the screen, kAerialSize slices along each
-// column's ray (rgba16f 2D arrays, one layer per slice): rgb = light scattered toward the camera
-// and transmittance from the camera to the slice's far end.
+// column's ray (rgba16f 3D images of kAerialSize + 1 slices, the first the camera's): rgb = light
+// scattered toward the camera and transmittance from the camera to the slice's far end.
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
 // Bindings of the per-frame table builds (set 0).
@@ -45,8 +51,8 @@ GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (storag
 GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D
 GPU_CONST uint kSkyTableBindingMultipleScattering = 2u;   // sampler2D
 GPU_CONST uint kSkyTableBindingSkyView = 3u;              // image2D rgba16f, written
-GPU_CONST uint kSkyTableBindingAerialLight = 4u;          // image2DArray rgba16f, written
-GPU_CONST uint kSkyTableBindingAerialTransmittance = 5u;  // image2DArray rgba16f, written
+GPU_CONST uint kSkyTableBindingAerialLight = 4u;          // image3D rgba16f, written
+GPU_CONST uint kSkyTableBindingAerialTransmittance = 5u;  // image3D rgba16f, written
 
 // The weather that shapes the cloud cover (shaders/clouds_cover.comp), one storage buffer
 // written once per planet by engine/render/cloud_cover.cpp.
@@ -98,7 +104,7 @@ struct SkyUniforms {
   vec4 clouds;         // x: bottom (m above R), y: top, z: extinction of full density (1/m), w: cloud width over
                        // the layer's thickness (caps slant paths through a cloud)
   vec4 cloudShape;     // x: angle of a level-0 cover texel (rad), y: the cover's last mip level, z: most samples per
-                       // crossing of the layer, w: unused
+                       // crossing of the layer, w: pixels per sample of the cloud pass along each axis (1 or 2)
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
   vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc

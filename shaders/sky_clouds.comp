@@ -1,0 +1,62 @@
+#version 450
+// The cloud pass of the sky (issue 21, point 7): the cloud layer along the view rays and its
+// shadow on the drawn surfaces, at half the frame's resolution in each axis, before the compose
+// pass (sky.comp) upsamples them. On a CPU device every pixel pays for every branch of the
+// layer's march, so a quarter of the rays is most of the saving; the cover's texels span many
+// pixels except from far above the layer, where the pass runs at full resolution instead
+// (SkyUniforms::cloudShape.w, engine/render/sky_pass.h: cloudPassScale).
+// Each sample stands for a 2×2 block of pixels: its ray goes through the block's centre and, in
+// a block across a silhouette, ends at the nearer object, so such a block holds the nearer
+// object's clouds and the pixels beside it find the farther side's in the next block.
+// Per sample it writes the cloud's light already composited with the air in front of it (the
+// aerial-perspective volume at the distance its opacity is centred on) and its transmittance,
+// and the ray's end, its path through the layer before it and the shadow there (cloudSampleEnd).
+#extension GL_GOOGLE_include_directive : require
+
+#include "sky_compose.glsl"
+
+layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform writeonly image2D cloudSampleLight;
+layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2D cloudSampleEnd;
+
+// The largest ratio of distances within a block of pixels that are taken for one surface.
+const float kOneSurfaceRatio = 1.05f;
+
+void main() {
+  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+  int scale = int(sky.cloudShape.w);
+  if (any(greaterThanEqual(cell * scale, ivec2(sky.extent.xy)))) return;
+  // The depth at the block's centre. Reversed Z stores 1 / view distance, which is affine across
+  // the screen on a plane, so on one surface the mean of the four pixels' depths is the centre's
+  // (from orbit neighbouring pixels' distances differ by far more than the layer is thick: the
+  // nearest one would end the centre's ray in front of the layer). Across a silhouette, or where
+  // a pixel shows no surface (depth 0), the nearest surface (the largest depth).
+  ivec2 last = ivec2(sky.extent.xy) - 1;
+  float nearest = 0.0f, farthest = 1e30f, sum = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    float d = texelFetch(depthBuffer, min(scale * cell + (scale - 1) * ivec2(k & 1, k >> 1), last), 0).r;
+    nearest = max(nearest, d);
+    farthest = min(farthest, d);
+    sum += d;
+  }
+  bool oneSurface = farthest > 0.0f && nearest <= kOneSurfaceRatio * farthest;
+  vec2 centre = (vec2(cell) + 0.5f) * float(scale);
+  ViewRay ray = viewRay(centre, oneSurface ? 0.25f * sum : nearest);
+
+  vec3 light;
+  float transmittance, tCloud;
+  cloudsAlong(ray, light, transmittance, tCloud);
+  // The layer seen through the air in front of it: that air's light where the cloud hides the
+  // rest of the ray, and the cloud's own light through it (the compose adds the rest of the
+  // ray's light times the cloud's transmittance).
+  vec3 composite = vec3(0.0f);
+  if (tCloud >= 0.0f) {
+    vec2 uv = centre / sky.extent.xy;
+    float R = sky.atmosphere.radii.x;
+    vec2 columnStretch = aerialColumnStretch(R, sky.camera.x, ray.dir.z, ray.hGround);
+    vec3 frontLight, frontTransmittance;
+    aerialPerspective(uv, tCloud, columnStretch, frontLight, frontTransmittance);
+    composite = (1.0f - transmittance) * frontLight + frontTransmittance * light;
+  }
+  imageStore(cloudSampleLight, cell, vec4(composite, transmittance));
+  imageStore(cloudSampleEnd, cell, vec4(ray.tGeometry, layerPathBefore(ray.dir, ray.tEnd), cloudShadow(ray), 0.0f));
+}

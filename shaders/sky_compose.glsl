@@ -1,0 +1,347 @@
+// What the sky compose pass (sky.comp) and its cloud pass (sky_clouds.comp) share: one
+// descriptor set layout, the view ray through a point of the screen and where it ends, the read
+// of the aerial-perspective volume, and the cloud layer (seed 001 §4.4: three cover images
+// cross-faded, Elias's cover function) with its light along a ray and its shadow on the ground.
+// The cloud pass's images (kSkyBindingCloudLight, kSkyBindingCloudEnd) are declared by each
+// includer, with the access it needs.
+#ifndef PLANET_SKY_COMPOSE_GLSL
+#define PLANET_SKY_COMPOSE_GLSL
+
+#include "shared/sky_params.h"
+
+layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
+
+// A storage buffer, not a uniform buffer (why: engine/render/sky_pass.cpp, kComposeBindings).
+// SkyUniforms has only vec4 and mat4 members, so std430 lays it out as std140 would.
+layout(std430, set = 0, binding = kSkyBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
+layout(set = 0, binding = kSkyBindingColor, rgba16f) uniform image2D color;
+layout(set = 0, binding = kSkyBindingDepth) uniform sampler2D depthBuffer;
+layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmittanceTable;
+layout(set = 0, binding = kSkyBindingClouds) uniform samplerCube cloudCover;
+layout(set = 0, binding = kSkyBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
+layout(set = 0, binding = kSkyBindingSkyView) uniform sampler2D skyView;
+layout(set = 0, binding = kSkyBindingAerialLight) uniform sampler3D aerialLight;
+layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler3D aerialTransmittance;
+
+#define MULTIPLE_SCATTERING(a, h, muS) \
+  textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
+// Eclipses: the reference march scales each sample's light by the share of the sun it sees past
+// the scene's other bodies, at its place on the segment's ray (its start, plus t along the ray).
+// Whether another body can hide the sun (a scene), as a specialization constant: the eclipse
+// loop's body costs every pixel on lavapipe even with no occluder.
+layout(constant_id = 0) const bool kSpecEclipses = true;
+#define ECLIPSE_POSSIBLE kSpecEclipses
+#include "common/eclipse.glsl"
+vec3 marchStart;  // local frame, from the camera
+vec3 marchDirection;
+#define SUN_VISIBLE_ALONG(t) eclipseSunVisible(marchStart + marchDirection * (t), sky.sunLocal.xyz, sky.eclipse)
+#include "atmosphere_lookup.glsl"
+#include "sky_aerial.glsl"
+
+const float kInfinity = 3.0e38f;
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
+
+// The cloud layer (issue 20 point 4) is a height field: the column over each point of the
+// cover holds cloud from the layer's bottom up to bottom + density · thickness, with extinction
+// ∝ density, so a dense column is a tall, optically thick cloud and a thin one a low wisp. A far
+// sample reads the density averaged over its footprint (the cover's mip levels): a sparse field
+// of small clouds becomes a low, thin haze there, not an opaque deck (gaps stay open).
+
+// Cover density (0..1) at a point `fromCentre` (local frame, relative to the planet's centre),
+// cross-faded between the three images (seed 001 eq. 4.2) from mip level `lod`.
+float coverDensity(vec3 fromCentre, float lod) {
+  vec3 planetDir = normalize(mat3(sky.localToPlanet) * fromCentre);
+  float angle = sky.cloudMotion.w;  // the layer drifts eastward: look up where it came from
+  float ca = cos(angle), sa = sin(angle);
+  vec3 drifted = vec3(ca * planetDir.x + sa * planetDir.y, -sa * planetDir.x + ca * planetDir.y, planetDir.z);
+  return dot(textureLod(cloudCover, drifted, lod).rgb, sky.cloudMotion.xyz);
+}
+
+// The mip level whose texels span `footprintM` on the layer (radius rLayer).
+float coverLod(float footprintM, float rLayer) {
+  return clamp(log2(max(footprintM / (sky.cloudShape.x * rLayer), 1.0f)), 0.0f, sky.cloudShape.y);
+}
+
+// Henyey–Greenstein phase function (per steradian) for the cosine nu between light and view.
+float henyeyGreenstein(float g, float nu) {
+  float k = 1.0f + g * g - 2.0f * g * nu;
+  return (1.0f - g * g) / (4.0f * kAtmospherePi * k * sqrt(k));
+}
+
+// Light scattered toward the eye by a cloud at altitude h in a column of density d, per unit of
+// its opacity. Sunlight reaches the point through the column above it: directly, attenuated by
+// Beer–Lambert along the slant path (the cloud's width caps it when the sun is low) and forward
+// peaked (the silver lining toward the sun); and diffusely, by the two-stream transmission of a
+// conservatively scattering slab, T = 1 / (1 + 3/4 (1 − g) τ) (Bohren 1987), which leaves a thick
+// cloud's base grey and its top bright. Sky light comes in the same way from above; a tenth of
+// it, the light from the ground and the sky's sides, reaches every part.
+vec3 cloudLight(float h, float d, float muS, float phase, vec3 sunLight, vec3 skyLight) {
+  float thickness = sky.clouds.y - sky.clouds.x;
+  float top = sky.clouds.x + d * thickness;
+  float depth = max(top - h, 0.0f);
+  float extinction = sky.clouds.z * d;
+  float slant = min(depth / max(muS, 0.05f), sky.clouds.w * thickness);
+  float direct = exp(-extinction * slant);
+  // Powder (Schneider & Vos 2015): just inside a cloud the light has not yet been scattered
+  // toward the eye, which darkens the rims facing the viewer away from the sun a little.
+  float powder = 1.0f - 0.5f * exp(-2.0f * extinction * depth);
+  float tauDown = extinction * depth;
+  float diffuse = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown / max(muS, 0.2f));
+  float diffuseSky = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown);
+  const float kAlbedo = 0.95f;
+  return kAlbedo * (sunLight * (phase * direct * powder + max(muS, 0.0f) / kAtmospherePi * diffuse) +
+                    skyLight / kAtmospherePi * (0.1f + 0.9f * diffuseSky));
+}
+
+// The sky irradiance table at sun zenith cosine muS, fading to none by the end of astronomical
+// twilight below its first entry (as terrain_surface.glsl's).
+vec3 skyIrradianceAt(float muS) {
+  float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * 15.0f;
+  uint i = min(uint(x), 14u);
+  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
+  return night * mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
+}
+
+// The ray's stretches inside the layer (at most two: a ray from above may dip below its bottom
+// and rise again), clipped to [0, tEnd]; returns how many.
+uint layerIntervals(float R, float h, float mu, float tEnd, out vec2 first, out vec2 second) {
+  float bottom = sky.clouds.x, top = sky.clouds.y;
+  vec2 topHits = raySphere(R, h, mu, top);
+  vec2 bottomHits = raySphere(R, h, mu, bottom);
+  first = vec2(-1.0f);
+  second = vec2(-1.0f);
+  if (h >= top) {
+    if (topHits.y < 0.0f) return 0u;  // misses the layer (or only grazes it)
+    if (bottomHits.y >= 0.0f) {
+      first = vec2(topHits.x, bottomHits.x);
+      second = vec2(bottomHits.y, topHits.y);
+    } else {
+      first = topHits;
+    }
+  } else if (h >= bottom) {
+    if (bottomHits.y >= 0.0f) {
+      first = vec2(0.0f, bottomHits.x);
+      second = vec2(bottomHits.y, topHits.x);
+    } else {
+      first = vec2(0.0f, topHits.x);
+    }
+  } else {
+    first = vec2(bottomHits.x, topHits.x);
+  }
+  vec2 a0 = first, a1 = second;
+  uint count = 0u;
+  if (a0.x >= 0.0f && a0.x < tEnd && a0.y > a0.x) {
+    first = vec2(a0.x, min(a0.y, tEnd));
+    count = 1u;
+  }
+  if (a1.x >= 0.0f && a1.x < tEnd && a1.y > a1.x) {
+    vec2 clipped = vec2(a1.x, min(a1.y, tEnd));
+    if (count == 0u) first = clipped;
+    else second = clipped;
+    count += 1u;
+  }
+  return count;
+}
+
+// The segments a stretch of the ray in the layer is crossed in (nearer ones shorter).
+uint layerSegments(vec2 stretch, float across) {
+  float thickness = sky.clouds.y - sky.clouds.x;
+  return uint(clamp(ceil((stretch.y - stretch.x) * across / (1.5f * thickness)), 1.0f, sky.cloudShape.z));
+}
+
+// Composes the layer along the ray's stretches in it (`count` of first, second): a few segments
+// each, nearer ones shorter, each reading the cover once at its middle, averaged over the
+// segment's length and the pixel's footprint (the mip level), and crossing the column there
+// analytically: the part of the segment's altitude range inside the column is the part of its
+// length inside the cloud. One loop over both stretches' segments: a CPU device runs a loop as
+// long as its longest lane, and each call of a loop at least once.
+void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, uint count, float nu, float muSCamera,
+                float r, vec3 sunLight, vec3 skyLight, inout vec3 light, inout float transmittance,
+                inout float weightedT, inout float weight) {
+  float bottom = sky.clouds.x, top = sky.clouds.y;
+  float thickness = top - bottom;
+  float phase = 0.8f * henyeyGreenstein(0.75f, nu) + 0.2f * henyeyGreenstein(-0.2f, nu);
+  float across = sqrt(max(1.0f - mu * mu, 0.0f));
+  uint firstSegments = layerSegments(first, across);
+  uint segments = firstSegments + (count > 1u ? layerSegments(second, across) : 0u);
+  float hPrevious = altitudeAlong(R, h, mu, first.x);
+  float tPrevious = first.x;
+  for (uint k = 0u; k < segments; ++k) {
+    bool inFirst = k < firstSegments;
+    vec2 stretch = inFirst ? first : second;
+    uint i = inFirst ? k + 1u : k + 1u - firstSegments;
+    float stretchSegments = float(inFirst ? firstSegments : segments - firstSegments);
+    if (i == 1u) {  // the start of a stretch
+      tPrevious = stretch.x;
+      hPrevious = altitudeAlong(R, h, mu, stretch.x);
+    }
+    float f = float(i) / stretchSegments;
+    float t = stretch.x + (stretch.y - stretch.x) * f * f;
+    float hNext = altitudeAlong(R, h, mu, t);
+    float tMid = 0.5f * (tPrevious + t);
+    float segment = t - tPrevious;
+    float footprint = max(tMid * sky.extent.z, 0.5f * segment * across);
+    vec3 fromCentre = vec3(dir.x * tMid, dir.y * tMid, R + h + dir.z * tMid);
+    float d = coverDensity(fromCentre, coverLod(footprint, R + 0.5f * (bottom + top)));
+    float columnTop = bottom + d * thickness;
+    float lo = min(hPrevious, hNext), hi = max(hPrevious, hNext);
+    // Soft top: a near-horizontal segment fades through the column's upper tenth.
+    float span = max(hi - lo, 0.1f * d * thickness + 20.0f);
+    float inside = clamp((min(hi, columnTop) - max(lo, bottom)) / span, 0.0f, 1.0f);
+    if (d > 0.002f && inside > 0.0f) {
+      float tau = sky.clouds.z * d * inside * segment;
+      float alpha = 1.0f - exp(-tau);
+      // Lit where the eye sees into the cloud: one optical depth past where the ray enters the
+      // column (its top seen from above, its base from below, its middle from the side).
+      float overlapLo = max(lo, bottom), overlapHi = min(hi, columnTop);
+      float visible = min(0.5f * (overlapHi - overlapLo), (hi - lo) / (max(segment, 1.0f) * sky.clouds.z * d));
+      float hLight = hNext < hPrevious ? overlapHi - visible : overlapLo + visible;
+      float muS = clamp((r * muSCamera + tMid * nu) / (R + hLight), -1.0f, 1.0f);
+      light += transmittance * alpha * cloudLight(hLight, d, muS, phase, sunLight, skyLight);
+      weightedT += transmittance * alpha * tMid;
+      weight += transmittance * alpha;
+      transmittance *= 1.0f - alpha;
+    }
+    tPrevious = t;
+    hPrevious = hNext;
+    if (transmittance < 0.01f) break;
+  }
+}
+
+// The tables' atmosphere between the camera and distance t along the pixel's ray (screen
+// position uv): light scattered toward the camera and transmittance, the aerial-perspective
+// volume filtered between the slices around t (in front of the first, toward the camera's
+// slice of no air) with one read of each.
+void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
+  // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
+  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
+  vec3 uvw = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
+  light = textureLod(aerialLight, uvw, 0.0f).rgb;
+  transmittance = textureLod(aerialTransmittance, uvw, 0.0f).rgb;
+}
+
+// A view ray through a point of the screen (in pixels) and where it ends: at the drawn surface
+// (depth, reversed Z), else at the ground sphere, else nowhere (kInfinity).
+struct ViewRay {
+  vec3 dir;  // local frame, unit
+  bool geometry;
+  float tGeometry;  // to the drawn surface (or the sea's sphere in front of it); kInfinity without geometry
+  float hGround;    // the sphere a ray that met no geometry ends on (m above R)
+  vec2 groundHits;  // raySphere at hGround
+  bool seesGround;  // the ray meets that sphere
+  float tEnd;
+};
+
+ViewRay viewRay(vec2 screenPoint, float depth) {
+  ViewRay ray;
+  vec2 ndc = screenPoint / sky.extent.xy * 2.0f - 1.0f;
+  vec4 nearPoint = sky.clipToLocal * vec4(ndc, 1.0f, 1.0f);
+  ray.dir = normalize(nearPoint.xyz / nearPoint.w);
+  ray.geometry = depth > 0.0f;
+  // Reversed Z: depth = near / view distance; the ray length follows from the view axis.
+  ray.tGeometry = ray.geometry ? sky.camera.y / depth / max(dot(ray.dir, sky.forward.xyz), 1e-6f) : kInfinity;
+  float R = sky.atmosphere.radii.x;
+  float h = sky.camera.x;
+  float mu = ray.dir.z;
+  // The sea is drawn on the mesh's flat triangles, up to a few hundred metres below the sphere
+  // in their middles (chord sag) on the coarse rings seen from orbit; ending the march there
+  // put a faint grid of the triangles into the haze. The march ends at the sea's sphere when
+  // that is nearer than what was drawn.
+  float lowest = sky.surface.x;
+  bool hasSea = sky.surface.y > 0.5f;
+  if (ray.geometry && hasSea && h > lowest) {
+    vec2 sea = raySphere(R, h, mu, lowest);
+    if (sea.x >= 0.0f && sea.x < ray.tGeometry) ray.tGeometry = sea.x;
+  }
+  // A ray that met no geometry has met the ground only below the lowest surface: without a sea,
+  // basins below the radius sphere are seen past its horizon (the mesh may end before them), and
+  // counting the radius sphere as ground drew those rays black.
+  ray.hGround = sky.surface.z;  // the radius sphere with a sea, else min(lowest, 0)
+  ray.groundHits = raySphere(R, h, mu, ray.hGround);
+  ray.seesGround = mu < 0.0f && ray.groundHits.x >= 0.0f;
+  ray.tEnd = ray.geometry ? ray.tGeometry : (ray.seesGround ? ray.groundHits.x : kInfinity);
+  return ray;
+}
+
+// Whether the frame draws clouds (the preset has them, they are on, and there is air). Also as a
+// specialization constant (SkyPass::cloudsDrawn), so that a pipeline without them has no cloud
+// code: lavapipe runs every branch for every pixel.
+layout(constant_id = 1) const bool kSpecClouds = true;
+bool cloudsDrawn() { return kSpecClouds && sky.cameraPlanet.w > 0.5f && sky.atmosphere.radii.w > 0.5f; }
+
+// Cloud shadow on the drawn surface, as a factor of its light: the column where the ray toward
+// the sun crosses the middle of the layer, crossed at the sun's slant (the cloud's width caps
+// it), blocks the sun's direct light; sky light still comes in.
+float cloudShadow(ViewRay ray) {
+  float shadow = 1.0f;
+  float R = sky.atmosphere.radii.x;
+  float h = sky.camera.x;
+  vec3 sun = sky.sunLocal.xyz;
+  float nu = dot(ray.dir, sun);
+  float cloudH = 0.5f * (sky.clouds.x + sky.clouds.y);
+  if (ray.geometry && cloudsDrawn()) {
+    float hSurface = altitudeAlong(R, h, ray.dir.z, ray.tGeometry);
+    float muSSurface = ((R + h) * sun.z + ray.tGeometry * nu) / (R + hSurface);
+    if (hSurface < cloudH && muSSurface > 0.0f) {
+      float toLayer = raySphere(R, hSurface, muSSurface, cloudH).x;
+      vec3 layerPoint = ray.dir * ray.tGeometry + sun * toLayer;  // from the camera
+      vec3 fromCentre = vec3(layerPoint.x, layerPoint.y, R + h + layerPoint.z);
+      float footprint = max(ray.tGeometry * sky.extent.z, 1000.0f);
+      float d = coverDensity(fromCentre, coverLod(footprint, R + cloudH));
+      float thickness = sky.clouds.y - sky.clouds.x;
+      float slant = min(d * thickness / muSSurface, sky.clouds.w * thickness);
+      shadow = 1.0f - 0.75f * (1.0f - exp(-sky.clouds.z * d * slant));
+    }
+  }
+  return shadow;
+}
+
+// The cloud layer along the view ray up to its end: the light it sends toward the camera, its
+// transmittance, and the distance its opacity is centred on (tCloud, where the compose puts it
+// into the air's march; −1 where the ray meets no cloud).
+void cloudsAlong(ViewRay ray, out vec3 light, out float transmittance, out float tCloud) {
+  light = vec3(0.0f);
+  transmittance = 1.0f;
+  tCloud = -1.0f;
+  AtmosphereParams a = sky.atmosphere;
+  float R = a.radii.x;
+  float h = sky.camera.x;
+  float r = R + h;
+  float mu = ray.dir.z;
+  vec3 sun = sky.sunLocal.xyz;
+  float muS = sun.z;
+  float nu = dot(ray.dir, sun);
+  float cloudH = 0.5f * (sky.clouds.x + sky.clouds.y);
+  if (cloudsDrawn()) {
+    vec2 first, second;
+    uint stretches = layerIntervals(R, h, mu, ray.tEnd, first, second);
+    if (stretches > 0u) {
+      // Sunlight and sky light once, at the middle of the layer where the ray enters it.
+      float muSLayer = clamp((r * muS + first.x * nu) / (R + cloudH), -1.0f, 1.0f);
+      // Eclipses: the share of the sun seen there, for the sun's light and the sky's (as on the ground).
+      float eclipse = eclipseSunVisible(ray.dir * first.x, sun, sky.eclipse);
+      vec3 sunLight = eclipse * sunTransmittanceTable(a, cloudH, muSLayer) * a.ozoneSun.y;
+      vec3 skyLight = eclipse * skyIrradianceAt(muSLayer);
+      float weightedT = 0.0f, weight = 0.0f;
+      marchLayer(ray.dir, R, h, mu, first, second, stretches, nu, muS, r, sunLight, skyLight, light, transmittance,
+                 weightedT, weight);
+      if (weight > 0.0f) tCloud = weightedT / weight;
+    }
+  }
+}
+
+// The length of the ray inside the cloud layer before distance t: what the clouds along a ray
+// depend on its end by, so two rays whose ends differ only outside the layer carry the same clouds.
+// The layer is the shell between two spheres: the length inside the top's less that inside the bottom's.
+float insideBefore(float R, float h, float mu, float hSphere, float t) {
+  vec2 hits = raySphere(R, h, mu, hSphere);
+  vec2 span = h < hSphere ? vec2(0.0f, max(hits.x, 0.0f)) : (hits.y >= 0.0f ? hits : vec2(0.0f));
+  return max(min(t, span.y) - span.x, 0.0f);
+}
+float layerPathBefore(vec3 dir, float t) {
+  float R = sky.atmosphere.radii.x, h = sky.camera.x;
+  return insideBefore(R, h, dir.z, sky.clouds.y, t) - insideBefore(R, h, dir.z, sky.clouds.x, t);
+}
+
+#endif
