@@ -277,7 +277,9 @@ SoakReport runSoak(vk::Context& context, const PlanetDescription& planet, const 
 
   const CameraPath path = soakCameraPath(planet.radiusM);
   auto build = [&](const SoakFrameState& state) {
-    return std::make_unique<Renderer>(context, framePlanet(planet, state, options.quality), settings);
+    auto renderer = std::make_unique<Renderer>(context, framePlanet(planet, state, options.quality), settings);
+    renderer->prepareAllPipelines();  // as the viewer does
+    return renderer;
   };
   auto sample = [&](uint32_t framesDone) {
     report.samples.push_back({framesDone, context.allocator.stats(), residentKiB()});

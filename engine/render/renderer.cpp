@@ -507,6 +507,13 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vkCmdEndRendering(cmd);
 }
 
+void Renderer::prepareAllPipelines() {
+  for (Body& body : bodies_) {
+    body.terrain->prepareShadingPipelines();
+    if (body.sky) body.sky->prepareAllPipelines();
+  }
+}
+
 void Renderer::toComposeLayouts(VkCommandBuffer cmd) {
   // After drawing into the targets: the compose pass reads and writes the HDR colour and samples
   // the depth.

@@ -141,6 +141,10 @@ class Renderer {
   CameraPose clampToGround(const CameraPose& camera, bool* raised = nullptr) const;
 
   TerrainPass& terrain() { return *bodies_[0].terrain; }
+  // Builds now the pipelines that frames would otherwise build on first use (the terrain's
+  // per-frame shading, the sky without clouds): for the viewer, so that no frame waits for a
+  // compile, and for the soak, so that no compile's memory comes after its warm-up.
+  void prepareAllPipelines();
   TerrainPass& terrain(size_t body) { return *bodies_.at(body).terrain; }
   SkyPass& sky(size_t body = 0) { return *bodies_.at(body).sky; }
   size_t bodyCount() const { return bodies_.size(); }

@@ -152,8 +152,14 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
 
 bool SkyPass::cloudsDrawn() const { return settings_.clouds && planet_.clouds.enabled && planet_.atmosphere.enabled; }
 
-void SkyPass::makePipelines() {
-  const bool clouds = cloudsDrawn();
+void SkyPass::makePipelines() { makePipelines(cloudsDrawn()); }
+
+void SkyPass::prepareAllPipelines() {
+  makePipelines(false);
+  if (planet_.clouds.enabled && planet_.atmosphere.enabled) makePipelines(true);
+}
+
+void SkyPass::makePipelines(bool clouds) {
   const uint32_t* constants = specialization_[clouds ? 1 : 0];
   if (settings_.mode == SkyMode::Tables) {
     if (!skyViewBuild_.get()) {

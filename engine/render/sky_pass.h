@@ -122,10 +122,16 @@ class SkyPass {
   // a frame recorded in tables mode has completed.
   std::vector<glm::vec4> readSkyView();
 
+  // Builds now the pipelines that a later change of settings (the clouds toggled) would build
+  // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for
+  // a compile and no compile's memory comes after a warm-up.
+  void prepareAllPipelines();
+
  private:
   // Makes the pipelines the settings' mode needs (compiling is milliseconds to a second on
   // lavapipe, so the mode not in use costs nothing).
   void makePipelines();
+  void makePipelines(bool clouds);
   // Whether frames draw clouds (the settings', with the planet's clouds and air): without them
   // the compose pipelines leave the cloud code out (sky.comp's kSpecClouds: lavapipe would run
   // it for every pixel) and the cloud pass is not dispatched.

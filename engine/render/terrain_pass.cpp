@@ -329,6 +329,18 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
   return shading;
 }
 
+void TerrainPass::prepareShadingPipelines() {
+  for (bool lights : {false, lightsDrawn()})
+    for (bool detail : {false, true}) {
+      TerrainShading shading;
+      shading.lights = lights;
+      shading.groundDetail = detail;
+      shading.ringShadow = ring_.has_value();
+      vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
+      if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
+    }
+}
+
 void TerrainPass::buildForToggles() {
   if (settings_.wireframe && !wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
   if (settings_.patches && !settings_.wireframe && !fullPatches_) {

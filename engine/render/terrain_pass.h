@@ -225,6 +225,9 @@ class TerrainPass {
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
   // City lights on the night side (planets with [lights]).
   void setLightsEnabled(bool lights) { settings_.lights = lights; }
+  // Builds now every fill pipeline a frame may choose (TerrainShading), which frames otherwise
+  // build on first use (Renderer::prepareAllPipelines).
+  void prepareShadingPipelines();
   // Whether this frame's terrain draws lights: the setting and the planet has them.
   bool lightsDrawn() const { return settings_.lights && planet_.lights.enabled; }
   // Scale of the sun's irradiance (gpu::kSunIrradiance).

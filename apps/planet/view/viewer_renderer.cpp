@@ -47,6 +47,8 @@ void ViewerRenderer::build(const ViewerSettings& settings, VkExtent2D window) {
     renderer_ = std::make_unique<Renderer>(context_, viewPlanet(settings.planet, settings.quality),
                                            renderSettings(settings, window));
   }
+  // Every variant a frame may pick, now: a compile in flight would stall a frame.
+  renderer_->prepareAllPipelines();
   applyTerrainToggles(settings);
   built_ = settings;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
