@@ -330,15 +330,20 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
 }
 
 void TerrainPass::prepareShadingPipelines() {
+  if (!wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
   for (bool lights : {false, lightsDrawn()})
     for (bool detail : {false, true}) {
       TerrainShading shading;
       shading.lights = lights;
       shading.groundDetail = detail;
       shading.ringShadow = ring_.has_value();
-      vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
-      if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
+      buildFillPipeline(shading);
     }
+}
+
+void TerrainPass::buildFillPipeline(const TerrainShading& shading) {
+  vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
+  if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
 }
 
 void TerrainPass::buildForToggles() {
@@ -443,10 +448,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   const glm::dmat4 projection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
   info.shading = shadingFor(view, info.lodFrozen);
-  if (!info.wireframe) {
-    vk::Owned<VkPipeline>& fill = fillPipelines_[info.shading.key()];
-    if (!fill.get()) fill = {context_, createDrawPipeline(false, info.shading)};
-  }
+  if (!info.wireframe) buildFillPipeline(info.shading);
   frame_ = info;
   // This frame's share of the patch levels' work (all of it without a budget).
   patchPlan_ = patches ? patches_->plan(info.patchLayout, settings_.patchTexelsPerFrame) : PatchTextures::Plan{};

@@ -225,8 +225,8 @@ class TerrainPass {
   void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
   // City lights on the night side (planets with [lights]).
   void setLightsEnabled(bool lights) { settings_.lights = lights; }
-  // Builds now every fill pipeline a frame may choose (TerrainShading), which frames otherwise
-  // build on first use (Renderer::prepareAllPipelines).
+  // Builds now every fill pipeline a frame may choose (TerrainShading) and the wireframe one,
+  // which frames otherwise build on first use (Renderer::prepareAllPipelines).
   void prepareShadingPipelines();
   // Whether this frame's terrain draws lights: the setting and the planet has them.
   bool lightsDrawn() const { return settings_.lights && planet_.lights.enabled; }
@@ -271,6 +271,8 @@ class TerrainPass {
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
   VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {});
+  // The fill pipeline of `shading`, built unless it exists.
+  void buildFillPipeline(const TerrainShading& shading);
   // The parts of the ground's shading this view can show (all the planet has when
   // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
   TerrainShading shadingFor(const TerrainView& view, bool lodFrozen) const;
