@@ -604,7 +604,9 @@ TEST(PlanetDescription, HostileTextGivesOneShortLineNamingTheProblem) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_TRUE(startsWith(message, c.says)) << c.what << "\n got: " << message.substr(0, 300);
     EXPECT_LT(message.size(), 400u) << c.what;
-    EXPECT_LT(seconds, 1.0) << c.what;
+    // Not a speed claim: a bound that quadratic work on these inputs (minutes) would break, loose
+    // enough for an AddressSanitizer build sharing the machine with another test (CTest runs two).
+    EXPECT_LT(seconds, 5.0) << c.what;
   }
   // Dots, brackets and braces inside strings and comments are not key paths.
   const PlanetDescription d = parsePlanetDescription(
