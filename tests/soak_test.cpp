@@ -28,13 +28,12 @@ std::filesystem::path tempDir() { return planet::test::processTempDir("soak_test
 CommandRun planet(const std::string& args) { return planet::test::runShell(PLANET_EXE, args, "", tempDir()); }
 
 // The test run: 350 frames cross a rebuild (250), the wireframe (260-279) and frozen-LOD
-// (100-139) windows, water and clouds off, and every exposure. Memory is
-// compared from frame 150 on: the loop's first descent to the ground (frames 100-150) raises
-// the resident memory once, by 5.5-7 MiB on lavapipe, after which it stays within 1 MiB over
-// 1,300 frames: lavapipe compiles a shader variant when a state is first drawn (new executable
-// mappings appear in those frames, and the growth is in the heap arena of its queue thread), so
-// it is a one-time cost, not a leak; the soak's default warm-up is a whole loop for the same
-// reason. 200 frames after the warm-up still catch a leak of 41 KiB a frame.
+// (100-139) windows, water and clouds off, and every exposure. Memory is compared from frame 150
+// on: the loop's first frames near the ground (100-150) raise the resident memory once, by
+// 5.5-7 MiB on lavapipe, and it stays within 1 MiB after (1,300 frames measured). In those frames
+// new executable mappings appear and a thread's heap arena grows: lavapipe compiling shader
+// variants for states first drawn, a one-time cost, not a leak (the soak's default warm-up is a
+// whole loop for the same reason). 200 frames after the warm-up still catch 41 KiB a frame.
 // An AddressSanitizer build does not check the resident memory (planet::kSoakChecksRss) and runs
 // several times slower, so it keeps the shorter run that still crosses every window.
 #if defined(__SANITIZE_ADDRESS__)
