@@ -11,7 +11,11 @@
 #include "noise/noise_gpu.h"
 #include "vk/buffer.h"
 #include "vk/commands.h"
+#include "shared/sky_params.h"
+#include "spv/atmosphere_transmittance.comp.h"
 #include "vk/image.h"
+#include "vk/owned.h"
+#include "vk/pipeline.h"
 
 namespace planet::test {
 namespace {
@@ -94,6 +98,84 @@ TEST_F(VkCore, TimestampsMeasureGpuWork) {
   EXPECT_LT(manyMs, 60000.0);
   // Any correct timer sees 16 times the work as clearly more (a constant one does not).
   EXPECT_GT(manyMs, 3.0 * fewMs) << fewMs << " ms for 2^14 points, " << manyMs << " ms for 2^18";
+}
+
+// The context's pipeline store (vk/pipeline_store.h): a second user of the same shader,
+// specialization and layout definition gets the first one's pipeline, and keeps drawing the
+// same values after the first user and its layout are gone (the fixture fails on any validation
+// message, layout compatibility included).
+TEST_F(VkCore, PipelineStoreSharesAPipelineAcrossLayoutsOfOneDefinition) {
+  noise::NoiseSettings settings;
+  settings.octaves = 6;
+  std::vector<glm::vec3> points(4096);
+  for (size_t i = 0; i < points.size(); ++i) points[i] = glm::vec3(float(i) * 0.01f, 1.5f, -2.0f);
+  std::vector<float> first(points.size()), second(points.size()), after(points.size());
+  auto a = std::make_unique<noise::GpuNoise>(context());
+  a->evaluate(settings, points, first);
+  const size_t stored = context().pipelines.storedCount();
+  const uint64_t hits = context().pipelines.hits();
+  EXPECT_GE(stored, 1u);
+  {
+    noise::GpuNoise b(context());
+    b.evaluate(settings, points, second);
+    EXPECT_EQ(context().pipelines.hits(), hits + 1);
+    EXPECT_EQ(context().pipelines.storedCount(), stored);
+    EXPECT_EQ(second, first);
+    a.reset();  // the first user, its layout and its sets go
+    b.evaluate(settings, points, after);
+    EXPECT_EQ(after, first);
+  }
+  // Nobody holds it now; it stays for the next user.
+  EXPECT_EQ(context().pipelines.storedCount(), stored);
+}
+
+// What the store keys on: another specialization is another pipeline; a layout whose set layout
+// the store never saw is never shared; pipelines nobody holds are kept up to kKeptUnused.
+TEST_F(VkCore, PipelineStoreKeepsDifferentStateApartAndBoundsWhatItKeeps) {
+  const VkDescriptorType storageImage[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+  const uint32_t push = sizeof(gpu::AtmosphereParams);
+  auto make = [&](std::vector<uint32_t> specialization) {
+    return vk::Owned<vk::ComputePipeline>(
+        context(), vk::createComputePipeline(context(), kSpv_atmosphere_transmittance_comp, storageImage, push,
+                                             specialization, 1));
+  };
+  {
+    vk::Owned<vk::ComputePipeline> one = make({7u});
+    vk::Owned<vk::ComputePipeline> same = make({7u});
+    vk::Owned<vk::ComputePipeline> other = make({8u});
+    EXPECT_NE(one->layout, same->layout);
+    EXPECT_EQ(one->pipeline, same->pipeline);
+    EXPECT_NE(one->pipeline, other->pipeline);
+  }
+
+  // A set layout made outside vk::createSetLayout: the store cannot know its definition.
+  VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  info.bindingCount = 1;
+  info.pBindings = &binding;
+  VkDescriptorSetLayout raw = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateDescriptorSetLayout(context().device, &info, nullptr, &raw), VK_SUCCESS);
+  vk::Owned<VkDescriptorSetLayout> rawSet(context(), raw);
+  vk::Owned<VkPipelineLayout> layout(
+      context(), vk::createPipelineLayout(context(), raw, push, VK_SHADER_STAGE_COMPUTE_BIT));
+  const size_t before = context().pipelines.storedCount();
+  {
+    vk::Owned<VkPipeline> p(context(), vk::createComputePipelineWithLayout(context(), kSpv_atmosphere_transmittance_comp,
+                                                                          layout.get()));
+    vk::Owned<VkPipeline> q(context(), vk::createComputePipelineWithLayout(context(), kSpv_atmosphere_transmittance_comp,
+                                                                          layout.get()));
+    EXPECT_NE(p.get(), q.get());
+    EXPECT_EQ(context().pipelines.storedCount(), before);
+  }
+
+  // More distinct pipelines than it keeps, each released at once: the oldest go.
+  const uint32_t extra = 6;
+  for (uint32_t i = 0; i < vk::PipelineStore::kKeptUnused + extra; ++i) make({100u + i});
+  EXPECT_EQ(context().pipelines.storedCount(), vk::PipelineStore::kKeptUnused);
+  // The most recent are still there: asking again is a hit, not a new pipeline.
+  const uint64_t hits = context().pipelines.hits();
+  make({100u + vk::PipelineStore::kKeptUnused + extra - 1});
+  EXPECT_EQ(context().pipelines.hits(), hits + 1);
 }
 
 TEST(VkValidation, MessengerCatchesDeliberateMisuse) {

@@ -344,6 +344,7 @@ void destroyContext(Context& context) {
   std::exception_ptr leak;
   if (context.device) {
     vkDeviceWaitIdle(context.device);
+    context.pipelines.destroyAll(context.device);
     try {
       context.allocator.destroy();
     } catch (...) {

@@ -12,6 +12,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/allocator.h"
+#include "vk/pipeline_store.h"
 
 namespace planet::vk {
 
@@ -79,6 +80,8 @@ class Context {
   uint32_t timestampValidBits = 0;  // of the universal family; 0 = no timestamps
 
   Allocator allocator;
+  // Pipelines shared by the passes and Renderers made on this context (vk/pipeline_store.h).
+  PipelineStore pipelines;
   bool validation = false;
   // Validation messages raised inside vkCreateInstance, held until it is known to have worked
   // (see createInstance in context.cpp); (is error, text).

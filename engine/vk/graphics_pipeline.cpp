@@ -1,6 +1,7 @@
 #include "vk/graphics_pipeline.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -10,9 +11,49 @@
 
 namespace planet::vk {
 
+namespace {
+
+VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc);
+
+// Every input of the creation but the layout, for the context's pipeline store: a field of
+// GraphicsPipelineDesc missing here would hand out a pipeline made with another value of it. The
+// size check catches most additions (not one that fits in the padding after the last flag).
+static_assert(sizeof(GraphicsPipelineDesc) == 112,
+              "GraphicsPipelineDesc changed: keep the pipeline store's key below in step with its fields");
+std::string storeKey(const GraphicsPipelineDesc& desc) {
+  std::string key = "graphics";
+  appendSpirvKey(key, desc.vertexSpirv);
+  appendSpirvKey(key, desc.fragmentSpirv);
+  appendKeySpan(key, desc.vertexSpecialization);
+  appendKeySpan(key, desc.fragmentSpecialization);
+  appendKey(key, desc.colorFormat);
+  appendKey(key, desc.depthFormat);
+  appendKey(key, desc.topology);
+  appendKey(key, desc.polygonMode);
+  appendKey(key, desc.cullMode);
+  appendKey(key, desc.frontFace);
+  appendKey(key, desc.depthCompare);
+  const uint8_t flags[] = {desc.depthTest, desc.depthWrite, desc.alphaBlend, desc.premultipliedAlpha,
+                           desc.additiveBlend};
+  appendKey(key, flags);
+  return key;
+}
+
+}  // namespace
+
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
   if (desc.alphaBlend && desc.additiveBlend)
     throw Error("a graphics pipeline blends either alpha or additively, not both");
+  return context.pipelines.get(context.device, desc.layout, storeKey(desc), [&](VkPipelineLayout layout) {
+    GraphicsPipelineDesc withLayout = desc;
+    withLayout.layout = layout;
+    return createUnshared(context, withLayout);
+  });
+}
+
+namespace {
+
+VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
   // Needed only while the pipeline is created: destroyed on return (or throw), fragment first.
   const Owned<VkShaderModule> vertex(context, createShaderModule(context, desc.vertexSpirv));
   const Owned<VkShaderModule> fragment(context, createShaderModule(context, desc.fragmentSpirv));
@@ -106,5 +147,7 @@ VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& 
   VK_CHECK(result);
   return pipeline;
 }
+
+}  // namespace
 
 }  // namespace planet::vk

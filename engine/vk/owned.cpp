@@ -30,11 +30,18 @@ void destroyDeviceHandle(Context& context, Handle& handle, void (*destroy)(VkDev
 
 }  // namespace
 
-void destroyOwned(Context& context, VkPipeline& pipeline) { destroyDeviceHandle(context, pipeline, vkDestroyPipeline); }
+// A pipeline from the context's store goes back to it (vk/pipeline_store.h); layouts are
+// forgotten by the store before their handles can be reused.
+void destroyOwned(Context& context, VkPipeline& pipeline) {
+  if (pipeline && context.pipelines.release(context.device, pipeline)) pipeline = VK_NULL_HANDLE;
+  destroyDeviceHandle(context, pipeline, vkDestroyPipeline);
+}
 void destroyOwned(Context& context, VkPipelineLayout& layout) {
+  if (layout) context.pipelines.forgetPipelineLayout(layout);
   destroyDeviceHandle(context, layout, vkDestroyPipelineLayout);
 }
 void destroyOwned(Context& context, VkDescriptorSetLayout& layout) {
+  if (layout) context.pipelines.forgetSetLayout(layout);
   destroyDeviceHandle(context, layout, vkDestroyDescriptorSetLayout);
 }
 void destroyOwned(Context& context, VkDescriptorPool& pool) { destroyDeviceHandle(context, pool, vkDestroyDescriptorPool); }

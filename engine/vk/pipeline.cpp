@@ -1,6 +1,7 @@
 #include "vk/pipeline.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -35,6 +36,7 @@ VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescri
   setInfo.pBindings = entries.data();
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   VK_CHECK(vkCreateDescriptorSetLayout(context.device, &setInfo, nullptr, &layout));
+  context.pipelines.noteSetLayout(layout, bindings, stages);
   return layout;
 }
 
@@ -66,11 +68,22 @@ VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout se
   info.pPushConstantRanges = &range;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VK_CHECK(vkCreatePipelineLayout(context.device, &info, nullptr, &layout));
+  context.pipelines.notePipelineLayout(layout, setLayout, pushConstantSize, pushStages);
   return layout;
 }
 
 VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
                                            std::span<const uint32_t> specialization) {
+  std::string state = "compute";
+  appendSpirvKey(state, spirv);
+  appendKeySpan(state, specialization);
+  return context.pipelines.get(context.device, layout, state, [&](VkPipelineLayout withLayout) {
+    return createComputePipelineUnshared(context, spirv, withLayout, specialization);
+  });
+}
+
+VkPipeline createComputePipelineUnshared(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
+                                         std::span<const uint32_t> specialization) {
   std::vector<VkSpecializationMapEntry> entries(specialization.size());
   for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)};
   VkSpecializationInfo specInfo{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
@@ -110,9 +123,9 @@ ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t
 
 void destroyComputePipeline(Context& context, ComputePipeline& pipeline) {
   if (pipeline.descriptorPool) vkDestroyDescriptorPool(context.device, pipeline.descriptorPool, nullptr);
-  if (pipeline.pipeline) vkDestroyPipeline(context.device, pipeline.pipeline, nullptr);
-  if (pipeline.layout) vkDestroyPipelineLayout(context.device, pipeline.layout, nullptr);
-  if (pipeline.setLayout) vkDestroyDescriptorSetLayout(context.device, pipeline.setLayout, nullptr);
+  destroyOwned(context, pipeline.pipeline);
+  destroyOwned(context, pipeline.layout);
+  destroyOwned(context, pipeline.setLayout);
   pipeline = ComputePipeline{};
 }
 

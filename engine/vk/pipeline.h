@@ -45,6 +45,10 @@ VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout se
 // use this directly.
 VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
                                            std::span<const uint32_t> specialization = {});
+// The same, made for the caller alone: never taken from or given to the context's pipeline
+// store (vk/pipeline_store.h), which createComputePipelineWithLayout and createComputePipeline use.
+VkPipeline createComputePipelineUnshared(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
+                                         std::span<const uint32_t> specialization = {});
 
 // A descriptor set layout with bindings[i] at binding i, visible to `stages`, and a pool for
 // `maxSets` such sets (graphics passes use these; compute pipelines make their own).
