@@ -24,6 +24,7 @@ void GpuTimer::destroy(Context&) { pool_.reset(); }
 void GpuTimer::reset(VkCommandBuffer cmd) {
   vkCmdResetQueryPool(cmd, pool_.get(), 0, maxScopes_ * 2);
   names_.clear();
+  startQueries_.clear();
   open_ = UINT32_MAX;
 }
 
@@ -32,6 +33,7 @@ void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
   if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
   open_ = uint32_t(names_.size());
   names_.push_back(name);
+  startQueries_.push_back(open_ * 2);
   // Top of pipe: the scope starts when its commands could first start.
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_.get(), open_ * 2);
 }
@@ -45,24 +47,33 @@ void GpuTimer::end(VkCommandBuffer cmd) {
 
 void GpuTimer::next(VkCommandBuffer cmd, const std::string& name) {
   if (open_ == UINT32_MAX) throw Error("GPU timer next('" + name + "') without begin()");
-  end(cmd);
   if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
+  const uint32_t endQuery = open_ * 2 + 1;
+  end(cmd);
+  // The end just written is the new scope's start: one timestamp, so no time falls between the
+  // two (two stamps written back to back were apart by however long the queue thread was
+  // descheduled between them, 5 ms on a loaded 2-core machine).
   open_ = uint32_t(names_.size());
   names_.push_back(name);
-  // Bottom of pipe, as the end just written: the next scope starts when this one's work is done.
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_.get(), open_ * 2);
+  startQueries_.push_back(endQuery);
 }
 
 std::vector<GpuTiming> GpuTimer::results(Context& context) const {
   std::vector<GpuTiming> timings;
   if (names_.empty()) return timings;
-  std::vector<uint64_t> stamps(names_.size() * 2);
-  VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), 0, uint32_t(stamps.size()),
-                                 stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  // Query by query: a scope begun by next() wrote no start query of its own, and waiting on a
+  // query never written would not return.
+  auto stamp = [&](uint32_t query) {
+    uint64_t value = 0;
+    VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), query, 1, sizeof(value), &value, sizeof(value),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    return value;
+  };
+  const uint64_t first = stamp(startQueries_[0]);
   for (size_t i = 0; i < names_.size(); ++i) {
-    uint64_t ticks = (stamps[2 * i + 1] - stamps[2 * i]) & validMask_;
-    uint64_t start = (stamps[2 * i] - stamps[0]) & validMask_;
+    const uint64_t begin = stamp(startQueries_[i]);
+    const uint64_t ticks = (stamp(uint32_t(2 * i + 1)) - begin) & validMask_;
+    const uint64_t start = (begin - first) & validMask_;
     timings.push_back({names_[i], double(ticks) * periodNs_ * 1e-6, double(start) * periodNs_ * 1e-6});
   }
   return timings;

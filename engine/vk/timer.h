@@ -31,7 +31,7 @@ class GpuTimer {
   void reset(VkCommandBuffer cmd);
   void begin(VkCommandBuffer cmd, const std::string& name);
   void end(VkCommandBuffer cmd);
-  // Ends the open scope and begins `name` where it ended (both after the open scope's work), for
+  // Ends the open scope and begins `name` at the same timestamp (after the open scope's work), for
   // passes that follow one another. On lavapipe, which writes a timestamp when its rasterizer
   // reaches it in the render pass it was recorded in, the switch belongs at the end of the
   // earlier render pass: written after the next pass began, it would wait for that pass's vertex
@@ -48,7 +48,8 @@ class GpuTimer {
   double periodNs_ = 1.0;
   uint64_t validMask_ = ~0ull;
   std::vector<std::string> names_;
-  uint32_t open_ = UINT32_MAX;  // index of the scope begun but not ended
+  std::vector<uint32_t> startQueries_;  // per scope: its start query, or the end query of the one before (next())
+  uint32_t open_ = UINT32_MAX;          // index of the scope begun but not ended
 };
 
 }  // namespace planet::vk
