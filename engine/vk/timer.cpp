@@ -24,8 +24,14 @@ void GpuTimer::destroy(Context&) { pool_.reset(); }
 void GpuTimer::reset(VkCommandBuffer cmd) {
   vkCmdResetQueryPool(cmd, pool_.get(), 0, maxScopes_ * 2);
   names_.clear();
-  startQueries_.clear();
+  scopeQueries_.clear();
+  queriesWritten_ = 0;
   open_ = UINT32_MAX;
+}
+
+uint32_t GpuTimer::writeQuery(VkCommandBuffer cmd, VkPipelineStageFlags2 stage) {
+  vkCmdWriteTimestamp2(cmd, stage, pool_.get(), queriesWritten_);
+  return queriesWritten_++;
 }
 
 void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
@@ -33,47 +39,42 @@ void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
   if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
   open_ = uint32_t(names_.size());
   names_.push_back(name);
-  startQueries_.push_back(open_ * 2);
   // Top of pipe: the scope starts when its commands could first start.
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool_.get(), open_ * 2);
+  scopeQueries_.push_back({writeQuery(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT), 0});
 }
 
 void GpuTimer::end(VkCommandBuffer cmd) {
   if (open_ == UINT32_MAX) throw Error("GPU timer end() without begin()");
   // Bottom of pipe: after every command recorded in the scope has finished.
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_.get(), open_ * 2 + 1);
+  scopeQueries_[open_].second = writeQuery(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT);
   open_ = UINT32_MAX;
 }
 
 void GpuTimer::next(VkCommandBuffer cmd, const std::string& name) {
   if (open_ == UINT32_MAX) throw Error("GPU timer next('" + name + "') without begin()");
   if (names_.size() >= maxScopes_) throw Error("GPU timer has no room for scope '" + name + "'");
-  const uint32_t endQuery = open_ * 2 + 1;
+  const uint32_t previous = open_;
   end(cmd);
   // The end just written is the new scope's start: one timestamp, so no time falls between the
   // two (two stamps written back to back were apart by however long the queue thread was
   // descheduled between them, 5 ms on a loaded 2-core machine).
   open_ = uint32_t(names_.size());
   names_.push_back(name);
-  startQueries_.push_back(endQuery);
+  scopeQueries_.push_back({scopeQueries_[previous].second, 0});
 }
 
 std::vector<GpuTiming> GpuTimer::results(Context& context) const {
   std::vector<GpuTiming> timings;
   if (names_.empty()) return timings;
-  // Query by query: a scope begun by next() wrote no start query of its own, and waiting on a
-  // query never written would not return.
-  auto stamp = [&](uint32_t query) {
-    uint64_t value = 0;
-    VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), query, 1, sizeof(value), &value, sizeof(value),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    return value;
-  };
-  const uint64_t first = stamp(startQueries_[0]);
+  // The queries were written in order from 0, so one read takes them all.
+  std::vector<uint64_t> stamps(queriesWritten_);
+  VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), 0, queriesWritten_, stamps.size() * sizeof(uint64_t),
+                                 stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const uint64_t first = stamps[scopeQueries_[0].first];
   for (size_t i = 0; i < names_.size(); ++i) {
-    const uint64_t begin = stamp(startQueries_[i]);
-    const uint64_t ticks = (stamp(uint32_t(2 * i + 1)) - begin) & validMask_;
-    const uint64_t start = (begin - first) & validMask_;
+    const auto [begin, end] = scopeQueries_[i];
+    const uint64_t ticks = (stamps[end] - stamps[begin]) & validMask_;
+    const uint64_t start = (stamps[begin] - first) & validMask_;
     timings.push_back({names_[i], double(ticks) * periodNs_ * 1e-6, double(start) * periodNs_ * 1e-6});
   }
   return timings;

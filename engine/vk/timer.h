@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -43,13 +44,18 @@ class GpuTimer {
   std::vector<GpuTiming> results(Context& context) const;
 
  private:
+  // Writes the next timestamp query (they are written in order from 0) and returns its index.
+  uint32_t writeQuery(VkCommandBuffer cmd, VkPipelineStageFlags2 stage);
+
   Owned<VkQueryPool> pool_;
   uint32_t maxScopes_ = 0;
   double periodNs_ = 1.0;
   uint64_t validMask_ = ~0ull;
   std::vector<std::string> names_;
-  std::vector<uint32_t> startQueries_;  // per scope: its start query, or the end query of the one before (next())
-  uint32_t open_ = UINT32_MAX;          // index of the scope begun but not ended
+  // Per scope, its start and end queries; a scope begun by next() starts at the one before's end.
+  std::vector<std::pair<uint32_t, uint32_t>> scopeQueries_;
+  uint32_t queriesWritten_ = 0;
+  uint32_t open_ = UINT32_MAX;  // index of the scope begun but not ended
 };
 
 }  // namespace planet::vk
