@@ -13,8 +13,6 @@ namespace planet::vk {
 
 namespace {
 
-VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc);
-
 // Every input of the creation but the layout, for the context's pipeline store: a field of
 // GraphicsPipelineDesc missing here would hand out a pipeline made with another value of it. The
 // size check catches most additions (not one that fits in the padding after the last flag).
@@ -38,20 +36,6 @@ std::string storeKey(const GraphicsPipelineDesc& desc) {
   appendKey(key, flags);
   return key;
 }
-
-}  // namespace
-
-VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
-  if (desc.alphaBlend && desc.additiveBlend)
-    throw Error("a graphics pipeline blends either alpha or additively, not both");
-  return context.pipelines.get(context.device, desc.layout, storeKey(desc), [&](VkPipelineLayout layout) {
-    GraphicsPipelineDesc withLayout = desc;
-    withLayout.layout = layout;
-    return createUnshared(context, withLayout);
-  });
-}
-
-namespace {
 
 VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
   // Needed only while the pipeline is created: destroyed on return (or throw), fragment first.
@@ -149,5 +133,15 @@ VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
 }
 
 }  // namespace
+
+VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
+  if (desc.alphaBlend && desc.additiveBlend)
+    throw Error("a graphics pipeline blends either alpha or additively, not both");
+  return context.pipelines.get(context.device, desc.layout, storeKey(desc), [&](VkPipelineLayout layout) {
+    GraphicsPipelineDesc withLayout = desc;
+    withLayout.layout = layout;
+    return createUnshared(context, withLayout);
+  });
+}
 
 }  // namespace planet::vk

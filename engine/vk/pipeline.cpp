@@ -29,14 +29,20 @@ ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t
 
 VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescriptorType> bindings,
                                       VkShaderStageFlags stages) {
+  VkDescriptorSetLayout layout = createSetLayoutOn(context.device, bindings, stages);
+  context.pipelines.noteSetLayout(layout, bindings, stages);
+  return layout;
+}
+
+VkDescriptorSetLayout createSetLayoutOn(VkDevice device, std::span<const VkDescriptorType> bindings,
+                                        VkShaderStageFlags stages) {
   std::vector<VkDescriptorSetLayoutBinding> entries(bindings.size());
   for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, bindings[i], 1, stages, nullptr};
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = uint32_t(entries.size());
   setInfo.pBindings = entries.data();
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorSetLayout(context.device, &setInfo, nullptr, &layout));
-  context.pipelines.noteSetLayout(layout, bindings, stages);
+  VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &layout));
   return layout;
 }
 
@@ -60,6 +66,13 @@ VkDescriptorPool createDescriptorPool(Context& context, std::span<const VkDescri
 
 VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
                                       VkShaderStageFlags pushStages) {
+  VkPipelineLayout layout = createPipelineLayoutOn(context.device, setLayout, pushConstantSize, pushStages);
+  context.pipelines.notePipelineLayout(layout, setLayout, pushConstantSize, pushStages);
+  return layout;
+}
+
+VkPipelineLayout createPipelineLayoutOn(VkDevice device, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
+                                        VkShaderStageFlags pushStages) {
   VkPushConstantRange range{pushStages, 0, pushConstantSize};
   VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   info.setLayoutCount = setLayout ? 1 : 0;
@@ -67,21 +80,13 @@ VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout se
   info.pushConstantRangeCount = pushConstantSize ? 1 : 0;
   info.pPushConstantRanges = &range;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreatePipelineLayout(context.device, &info, nullptr, &layout));
-  context.pipelines.notePipelineLayout(layout, setLayout, pushConstantSize, pushStages);
+  VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
   return layout;
 }
 
-VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
-                                           std::span<const uint32_t> specialization) {
-  std::string state = "compute";
-  appendSpirvKey(state, spirv);
-  appendKeySpan(state, specialization);
-  return context.pipelines.get(context.device, layout, state, [&](VkPipelineLayout withLayout) {
-    return createComputePipelineUnshared(context, spirv, withLayout, specialization);
-  });
-}
+namespace {
 
+// Made for the caller alone, never taken from or given to the context's pipeline store.
 VkPipeline createComputePipelineUnshared(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
                                          std::span<const uint32_t> specialization) {
   std::vector<VkSpecializationMapEntry> entries(specialization.size());
@@ -101,6 +106,18 @@ VkPipeline createComputePipelineUnshared(Context& context, std::span<const uint3
   vkDestroyShaderModule(context.device, module, nullptr);
   VK_CHECK(created);
   return pipeline;
+}
+
+}  // namespace
+
+VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
+                                           std::span<const uint32_t> specialization) {
+  std::string state = "compute";
+  appendSpirvKey(state, spirv);
+  appendKeySpan(state, specialization);
+  return context.pipelines.get(context.device, layout, state, [&](VkPipelineLayout withLayout) {
+    return createComputePipelineUnshared(context, spirv, withLayout, specialization);
+  });
 }
 
 ComputePipeline createComputePipeline(Context& context, std::span<const uint32_t> spirv,

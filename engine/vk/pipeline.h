@@ -42,19 +42,21 @@ VkPipelineLayout createPipelineLayout(Context& context, VkDescriptorSetLayout se
                                       VkShaderStageFlags pushStages);
 // A compute pipeline over an existing layout; `specialization[i]` is the uint specialization
 // constant with constant_id i. Passes that share one set between compute and graphics shaders
-// use this directly.
+// use this directly. Taken from the context's pipeline store (vk/pipeline_store.h) when it has it.
 VkPipeline createComputePipelineWithLayout(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
                                            std::span<const uint32_t> specialization = {});
-// The same, made for the caller alone: never taken from or given to the context's pipeline
-// store (vk/pipeline_store.h), which createComputePipelineWithLayout and createComputePipeline use.
-VkPipeline createComputePipelineUnshared(Context& context, std::span<const uint32_t> spirv, VkPipelineLayout layout,
-                                         std::span<const uint32_t> specialization = {});
 
 // A descriptor set layout with bindings[i] at binding i, visible to `stages`, and a pool for
 // `maxSets` such sets (graphics passes use these; compute pipelines make their own).
 VkDescriptorSetLayout createSetLayout(Context& context, std::span<const VkDescriptorType> bindings,
                                       VkShaderStageFlags stages);
 VkDescriptorPool createDescriptorPool(Context& context, std::span<const VkDescriptorType> bindings, uint32_t maxSets);
+// createSetLayout and createPipelineLayout without telling the context's pipeline store of them:
+// the store makes its own layouts with these.
+VkDescriptorSetLayout createSetLayoutOn(VkDevice device, std::span<const VkDescriptorType> bindings,
+                                        VkShaderStageFlags stages);
+VkPipelineLayout createPipelineLayoutOn(VkDevice device, VkDescriptorSetLayout setLayout, uint32_t pushConstantSize,
+                                        VkShaderStageFlags pushStages);
 VkDescriptorSet allocateSet(Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 // Points one binding of `set` at a whole buffer (storage or uniform, as `type` says).
 void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,

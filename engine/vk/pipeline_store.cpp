@@ -1,11 +1,9 @@
 #include "vk/pipeline_store.h"
 
-#include <cstring>
 #include <string_view>
-#include <vector>
 
 #include "core/error.h"
-#include "vk/context.h"
+#include "vk/pipeline.h"
 
 namespace planet::vk {
 
@@ -28,8 +26,8 @@ std::string PipelineStore::LayoutDefinition::key() const {
   std::string bytes;
   appendKey(bytes, uint8_t(setLayout ? 1 : 0));
   if (setLayout) {
-    appendKey(bytes, uint64_t(setLayout->size()));
-    bytes += *setLayout;
+    appendKeySpan(bytes, std::span<const VkDescriptorType>(setLayout->bindings));
+    appendKey(bytes, setLayout->stages);
   }
   appendKey(bytes, pushConstantSize);
   appendKey(bytes, pushStages);
@@ -38,11 +36,8 @@ std::string PipelineStore::LayoutDefinition::key() const {
 
 void PipelineStore::noteSetLayout(VkDescriptorSetLayout layout, std::span<const VkDescriptorType> bindings,
                                   VkShaderStageFlags stages) {
-  std::string bytes;
-  appendKeySpan(bytes, bindings);
-  appendKey(bytes, stages);
   std::lock_guard lock(mutex_);
-  setLayouts_[layout] = {std::move(bytes)};
+  setLayouts_[layout] = {{bindings.begin(), bindings.end()}, stages};
 }
 
 void PipelineStore::notePipelineLayout(VkPipelineLayout layout, VkDescriptorSetLayout setLayout,
@@ -54,7 +49,7 @@ void PipelineStore::notePipelineLayout(VkPipelineLayout layout, VkDescriptorSetL
       layouts_.erase(layout);  // a set layout made elsewhere: this layout's pipelines are not shared
       return;
     }
-    layouts_[layout] = {known->second.bytes, pushConstantSize, pushConstantSize ? pushStages : 0};
+    layouts_[layout] = {known->second, pushConstantSize, pushConstantSize ? pushStages : 0};
   } else {
     layouts_[layout] = {std::nullopt, pushConstantSize, pushConstantSize ? pushStages : 0};
   }
@@ -69,28 +64,6 @@ void PipelineStore::forgetPipelineLayout(VkPipelineLayout layout) {
   std::lock_guard lock(mutex_);
   layouts_.erase(layout);
 }
-
-namespace {
-
-// Bindings i = 0..n-1 of the types and stages `bytes` holds (noteSetLayout's encoding).
-VkDescriptorSetLayout createSetLayoutFrom(VkDevice device, const std::string& bytes) {
-  uint64_t size = 0;
-  std::memcpy(&size, bytes.data(), sizeof(size));
-  std::vector<VkDescriptorType> types(size / sizeof(VkDescriptorType));
-  std::memcpy(types.data(), bytes.data() + sizeof(size), size);
-  VkShaderStageFlags stages = 0;
-  std::memcpy(&stages, bytes.data() + sizeof(size) + size, sizeof(stages));
-  std::vector<VkDescriptorSetLayoutBinding> entries(types.size());
-  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, types[i], 1, stages, nullptr};
-  VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  info.bindingCount = uint32_t(entries.size());
-  info.pBindings = entries.data();
-  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
-  return layout;
-}
-
-}  // namespace
 
 VkPipeline PipelineStore::get(VkDevice device, VkPipelineLayout layout, const std::string& state,
                               const std::function<VkPipeline(VkPipelineLayout)>& create) {
@@ -109,14 +82,10 @@ VkPipeline PipelineStore::get(VkDevice device, VkPipelineLayout layout, const st
   // The store's own copy of the layout, for the pipeline to be made with and to outlive it.
   Entry entry;
   try {
-    if (definition.setLayout) entry.setLayout = createSetLayoutFrom(device, *definition.setLayout);
-    VkPushConstantRange range{definition.pushStages, 0, definition.pushConstantSize};
-    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = entry.setLayout ? 1 : 0;
-    info.pSetLayouts = &entry.setLayout;
-    info.pushConstantRangeCount = definition.pushConstantSize ? 1 : 0;
-    info.pPushConstantRanges = &range;
-    VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &entry.layout));
+    if (definition.setLayout)
+      entry.setLayout = createSetLayoutOn(device, definition.setLayout->bindings, definition.setLayout->stages);
+    entry.layout =
+        createPipelineLayoutOn(device, entry.setLayout, definition.pushConstantSize, definition.pushStages);
     entry.pipeline = create(entry.layout);
   } catch (...) {
     destroyEntry(device, entry);

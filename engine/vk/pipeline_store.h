@@ -25,6 +25,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -64,10 +65,11 @@ class PipelineStore {
 
  private:
   struct SetLayoutDefinition {
-    std::string bytes;  // binding types and stages
+    std::vector<VkDescriptorType> bindings;  // binding i has type bindings[i]
+    VkShaderStageFlags stages = 0;
   };
   struct LayoutDefinition {
-    std::optional<std::string> setLayout;  // the set layout's definition, none without a set
+    std::optional<SetLayoutDefinition> setLayout;  // none without a set
     uint32_t pushConstantSize = 0;
     VkShaderStageFlags pushStages = 0;
     std::string key() const;
