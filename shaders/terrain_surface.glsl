@@ -15,7 +15,7 @@ layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 // lod = log2(pixel footprint / finest texel), so detail changes continuously across the screen
 // (no rectangles where one level ends). Level floor(lod) and the next are blended by the
 // fraction; a level that does not cover the pixel (or is within its outer tenth) hands its
-// weight on to coarser ones.
+// weight on to coarser ones, as does one built over several frames where it holds nothing yet.
 // The levels lie on the camera's cube face, projected from the centre (face coordinates are
 // tan of the angle from the face normal): far beyond the face, near the edge of the visible
 // hemisphere from orbit, one texel stretches over tens of pixels and the coast turned into
@@ -47,7 +47,8 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
     for (uint j = first; j < levels && remaining > 0.0f; ++j) {
       vec4 level = frame.patchLevels[j];
       vec2 uv = (face + level.zw) * level.y;
-      float edge = min(min(uv.x, 1.0f - uv.x), min(uv.y, 1.0f - uv.y));
+      vec4 bounds = frame.patchBounds[j];  // what the layer holds (a level built over frames)
+      float edge = min(min(uv.x - bounds.x, bounds.z - uv.x), min(uv.y - bounds.y, bounds.w - uv.y));
       // A level whose build waits for a later frame has layer −1 (PatchTextures::plan).
       float weight = level.x < 0.0f ? 0.0f : clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
       if (j == first) weight *= 1.0f - fraction;

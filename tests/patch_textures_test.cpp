@@ -311,6 +311,87 @@ TEST_F(PatchTexturesGpu, UpdatesRebuildOnlyWhatMoved) {
   EXPECT_EQ(runUpdate(context(), patches, finer), 0u);
 }
 
+// Under the real-time budget (PatchTextures::plan): the first plan is a load (every level whole);
+// after a jump that makes every level new, each frame writes at most the budget (or one
+// minimum strip), coarsest level first, each level from a square at its centre grown by strips
+// (what its layer holds only grows, and holds its centre from the first strip); when nothing
+// is left, every level is what a whole build writes, bit for bit.
+TEST_F(PatchTexturesGpu, ABudgetGrowsEachLevelFromItsCentreToWhatAWholeBuildWrites) {
+  const PlanetDescription planet = resolvePreset("earth");
+  PlanetGpuData data(context(), planet);
+  const PatchSettings settings{128, 4, 0.5, 8};
+  PatchTextures patches(context(), data, settings);
+  const double radius = planet.radiusM;
+  const double pixel = nadirPixelM(radius);
+  const glm::dvec3 camera = cameraDirection(settings, radius);
+  const uint64_t budget = realTimePatchBudget(settings);
+  const uint64_t res = settings.resolution;
+  EXPECT_EQ(budget, res * res / 8);
+
+  const PatchTextures::Plan load = patches.plan(choosePatchLayout(settings, radius, camera, pixel), budget);
+  EXPECT_EQ(load.deferred, 0u) << "nothing held: the first frame is a load";
+  for (size_t j = 0; j < load.work.size(); ++j) {
+    ASSERT_EQ(load.work[j].size(), 1u);
+    EXPECT_EQ(load.work[j][0].texels(), res * res);
+  }
+  vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { patches.update(cmd, load); });
+
+  // A pixel 16 times finer: every exponent changes (by the level count, so the layers stay).
+  const PatchLayout jumped = choosePatchLayout(settings, radius, camera, pixel / 16.0);
+  for (size_t j = 0; j < jumped.levels.size(); ++j) ASSERT_EQ(jumped.levels[j].exponent, load.layout.levels[j].exponent - 4);
+  std::vector<PatchTextures::Region> before(jumped.levels.size());
+  uint32_t frames = 0;
+  uint64_t written = 0;
+  bool coarsestWhole = false;
+  for (;; ++frames) {
+    ASSERT_LT(frames, 100u);
+    const PatchTextures::Plan plan = patches.plan(jumped, budget);
+    uint64_t texels = 0;
+    for (size_t j = 0; j < plan.work.size(); ++j) {
+      for (const PatchTextures::Region& r : plan.work[j]) texels += r.texels();
+      const PatchTextures::Region& held = plan.held[j];
+      EXPECT_EQ(plan.usable[j], !held.empty());
+      if (held.empty()) continue;
+      // It holds the window's centre and everything it held before.
+      const PatchLevel& level = jumped.levels[j];
+      const int64_t centreA = level.originA + int64_t(res / 2), centreB = level.originB + int64_t(res / 2);
+      EXPECT_TRUE(held.originA <= centreA && centreA < held.originA + held.width && held.originB <= centreB &&
+                  centreB < held.originB + held.height)
+          << "frame " << frames << " level " << j;
+      const PatchTextures::Region& old = before[j];
+      if (!old.empty())
+        EXPECT_TRUE(held.originA <= old.originA && held.originB <= old.originB &&
+                    held.originA + held.width >= old.originA + old.width &&
+                    held.originB + held.height >= old.originB + old.height)
+            << "frame " << frames << " level " << j;
+      before[j] = held;
+    }
+    if (texels == 0) {
+      EXPECT_EQ(plan.deferred, 0u);
+      break;
+    }
+    EXPECT_LE(texels, std::max<uint64_t>(budget, PatchTextures::kMinStripTexels * res)) << "frame " << frames;
+    // Coarsest first: while the coarsest level is not whole, every frame works on it.
+    if (!coarsestWhole) EXPECT_FALSE(plan.work.back().empty()) << "frame " << frames;
+    coarsestWhole = plan.held.back().texels() == res * res;
+    written += texels;
+    const auto levelsWorked = uint32_t(std::count_if(plan.work.begin(), plan.work.end(),
+                                                     [](const std::vector<PatchTextures::Region>& w) { return !w.empty(); }));
+    vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { EXPECT_EQ(patches.update(cmd, plan), levelsWorked); });
+    EXPECT_EQ(patches.lastUpdateTexels(), texels);
+  }
+  std::printf("[ measured ] %u frames of at most %llu texels to build %zu new levels\n", frames,
+              (unsigned long long)budget, jumped.levels.size());
+  EXPECT_EQ(written, uint64_t(jumped.levels.size()) * res * res) << "each texel written once";
+  EXPECT_GE(frames, uint32_t(written / budget));
+
+  PatchTextures whole(context(), data, settings);
+  ASSERT_EQ(runUpdate(context(), whole, jumped), settings.levelCount);
+  const std::vector<float> grown = readBack(context(), patches);
+  const std::vector<float> built = readBack(context(), whole);
+  EXPECT_EQ(std::memcmp(grown.data(), built.data(), grown.size() * sizeof(float)), 0);
+}
+
 TEST_F(PatchTexturesGpu, RejectsLayoutsThatDoNotFitTheSettings) {
   const PlanetDescription planet = resolvePreset("moon");
   PlanetGpuData data(context(), planet);

@@ -87,9 +87,6 @@ void summarizeRun(ModeRun& run) {
 // Every mode flies the path at once, frame by frame in turn, so that a machine that slows down
 // for a while (a busy neighbour, a core taken away) slows every mode alike and the ratios
 // between modes stay fair. Each mode has its own Renderer, so none changes another's work.
-// Untimed frames a lead-in may add to build the levels its budget left (one level a frame; a
-// jump between timed frames can make every level stale).
-constexpr uint32_t kMaxSettleFrames = 8;
 
 std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& planet, const CameraPath& path,
                               const FrameBenchOptions& options, const FrameBenchProgress& progress) {
@@ -130,16 +127,22 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
       const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
       for (size_t m = 0; m < modes.size(); ++m) {
         if (progress) progress(modes[m].name, warmup, i, count, lastMs[m]);
-        // The lead-in settles what a real-time flight would have settled by then: the patch
-        // levels that the texel budget leaves for later frames are built over up to
-        // kMaxSettleFrames more untimed frames at the lead-in pose.
+        // The lead-in settles what a real-time flight would have settled by then: it is drawn
+        // without the patch texel budget, so every level is up to date at the lead-in pose (a
+        // jump between timed frames can make every level stale, which a flight at
+        // options.flightFps would have built strip by strip on the way); the timed frame then
+        // has the budget and one frame's movement.
+        Renderer& renderer = *renderers[m];
         if (leadIn) {
-          RenderResult lead = renderers[m]->render(leadPose, options.sun);
-          for (uint32_t k = 0; k < kMaxSettleFrames && lead.terrain.patchLevelsDeferred > 0; ++k)
-            lead = renderers[m]->render(leadPose, options.sun);
+          for (size_t b = 0; b < renderer.bodyCount(); ++b) renderer.terrain(b).setPatchTexelsPerFrame(0);
+          renderer.render(leadPose, options.sun);
+          for (size_t b = 0; b < renderer.bodyCount(); ++b) {
+            TerrainPass& terrain = renderer.terrain(b);
+            terrain.setPatchTexelsPerFrame(realTimePatchBudget(terrain.settings().patchSettings));
+          }
         }
         const auto start = std::chrono::steady_clock::now();
-        RenderResult result = renderers[m]->render(pose, options.sun);
+        RenderResult result = renderer.render(pose, options.sun);
         lastMs[m] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (!warmup) addFrame(runs[m], recordFrame(i, timeS, lastMs[m], result));
       }
@@ -313,8 +316,10 @@ std::string FrameBenchReport::table() const {
                      main.verticesEvaluatedMedian);
   if (options.patches)
     out += fmt::format(
-        "patch levels rebuilt per frame: mean {:.2f}, max {} (at most one level's texels a frame; up to {} waiting)\n",
-        main.patchLevelsRebuiltMean, main.patchLevelsRebuiltMax, main.patchLevelsDeferredMax);
+        "patch levels rebuilt per frame: mean {:.2f}, max {} (at most {} texels a frame, a recentre step; up to {} "
+        "levels not whole)\n",
+        main.patchLevelsRebuiltMean, main.patchLevelsRebuiltMax, realTimePatchBudget(PatchSettings{}),
+        main.patchLevelsDeferredMax);
   out += fmt::format("terrain time = {}\n", terrainTimeDefinition());
   if (runs.size() > 1) {
     out += fmt::format("\ncompare: median terrain time over {}'s ({:.2f} ms)\n", main.mode.name, main.terrainMs.median);

@@ -56,11 +56,12 @@ struct PatchSettings {
   uint32_t recentreDivisor = 8;
 };
 
-// The patch texels a real-time frame may write (TerrainSettings::patchTexelsPerFrame): one whole
-// level's, so that a jump that makes several levels stale costs the frames after it one level
-// each instead of one frame all of them (the benchmark's p99, issue 12).
+// The patch texels a real-time frame may write (TerrainSettings::patchTexelsPerFrame): one
+// recentre step of a level (an eighth of it by default), so that a level's move costs a frame its
+// strip and a level built anew (the descent's new finest level, a jump) is spread over frames
+// instead of costing one frame all of it (the benchmark's p99, issue 12 point 5).
 inline uint64_t realTimePatchBudget(const PatchSettings& settings) {
-  return uint64_t(settings.resolution) * settings.resolution;
+  return uint64_t(settings.resolution) * (settings.resolution / settings.recentreDivisor);
 }
 
 // Throws planet::Error naming the first bad value (resolution outside kPatchMinResolution ..

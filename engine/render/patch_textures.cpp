@@ -152,7 +152,7 @@ void PatchTextures::createPipelines() {
 }
 
 void PatchTextures::invalidate() {
-  for (LayerContent& content : contents_) content.valid = false;
+  for (LayerContent& content : contents_) content.held = {};
 }
 
 glm::uvec2 PatchTextures::storedTexel(const PatchLevel& level, uint32_t resolution, int64_t x, int64_t y) {
@@ -166,24 +166,15 @@ glm::vec2 PatchTextures::storageOffset(const PatchLevel& level, uint32_t resolut
   return glm::vec2(first) / float(resolution);
 }
 
-std::vector<PatchTextures::Region> PatchTextures::staleRegions(int face, const PatchLevel& level) const {
+PatchTextures::Region PatchTextures::heldOf(int face, const PatchLevel& level) const {
+  const LayerContent& content = contents_[level.layer];
+  if (content.held.empty() || content.face != face || content.exponent != level.exponent) return {};
   const int64_t res = settings_.resolution;
-  const LayerContent& held = contents_[level.layer];
-  const Region whole{level.originA, level.originB, uint32_t(res), uint32_t(res)};
-  if (!held.valid || held.face != face || held.exponent != level.exponent) return {whole};
-  const int64_t dA = level.originA - held.originA, dB = level.originB - held.originB;
-  if (dA == 0 && dB == 0) return {};
-  if (std::abs(dA) >= res || std::abs(dB) >= res) return {whole};
-  // The columns the old window did not cover (all rows), then the rows it did not cover within
-  // the columns it did: together exactly the new window minus the old.
-  std::vector<Region> regions;
-  if (dA != 0)
-    regions.push_back({dA > 0 ? held.originA + res : level.originA, level.originB, uint32_t(std::abs(dA)),
-                       uint32_t(res)});
-  if (dB != 0)
-    regions.push_back({std::max(level.originA, held.originA), dB > 0 ? held.originB + res : level.originB,
-                       uint32_t(res - std::abs(dA)), uint32_t(std::abs(dB))});
-  return regions;
+  const Region& h = content.held;
+  const int64_t a0 = std::max(h.originA, level.originA), a1 = std::min(h.originA + h.width, level.originA + res);
+  const int64_t b0 = std::max(h.originB, level.originB), b1 = std::min(h.originB + h.height, level.originB + res);
+  if (a1 <= a0 || b1 <= b0) return {};
+  return {a0, b0, uint32_t(a1 - a0), uint32_t(b1 - b0)};
 }
 
 void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& level, const Region& region,
@@ -256,48 +247,119 @@ void PatchTextures::writeRegion(const PatchLayout& layout, const PatchLevel& lev
   context_.allocator.flush(resources.shifts[slot]->allocation);
 }
 
-uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
-  return updateLevels(cmd, layout, std::vector<bool>(layout.levels.size(), true), slot);
+namespace {
+
+// A level's window less what its layer holds, `held` (a rectangle inside it that shares a corner
+// with it, or none): at most one strip along a (all rows) and one along b (the held columns),
+// else the whole window.
+std::vector<PatchTextures::Region> missingRegions(const PatchTextures::Region& window, const PatchTextures::Region& held) {
+  using Region = PatchTextures::Region;
+  if (held.empty()) return {window};
+  if (held == window) return {};
+  const int64_t a1 = window.originA + window.width, b1 = window.originB + window.height;
+  const int64_t heldA1 = held.originA + held.width, heldB1 = held.originB + held.height;
+  const bool cornerA = held.originA == window.originA || heldA1 == a1;
+  const bool cornerB = held.originB == window.originB || heldB1 == b1;
+  if (!cornerA || !cornerB) return {window};
+  std::vector<Region> regions;
+  if (held.width != window.width) {
+    const int64_t first = held.originA == window.originA ? heldA1 : window.originA;
+    regions.push_back({first, window.originB, window.width - held.width, window.height});
+  }
+  if (held.height != window.height) {
+    const int64_t first = held.originB == window.originB ? heldB1 : window.originB;
+    regions.push_back({held.originA, first, held.width, window.height - held.height});
+  }
+  return regions;
 }
 
-uint32_t PatchTextures::update(VkCommandBuffer cmd, const Plan& plan, uint32_t slot) {
-  if (plan.usable.size() != plan.layout.levels.size())
-    throw Error(fmt::format("patch plan has {} levels and {} usable flags", plan.layout.levels.size(),
-                            plan.usable.size()));
-  return updateLevels(cmd, plan.layout, plan.usable, slot);
+// Grows `held` (inside `window`) by one strip along its side farthest from the window's edge, at
+// most `texels` texels and at least `minThickness` thick (less only where less is missing).
+// Returns the strip (empty when nothing is missing or it would be thinner).
+PatchTextures::Region growHeld(const PatchTextures::Region& window, PatchTextures::Region& held, uint64_t texels,
+                               uint32_t minThickness) {
+  const int64_t gaps[4] = {held.originA - window.originA,
+                           (window.originA + window.width) - (held.originA + held.width),
+                           held.originB - window.originB,
+                           (window.originB + window.height) - (held.originB + held.height)};
+  const int side = int(std::max_element(std::begin(gaps), std::end(gaps)) - std::begin(gaps));
+  const int64_t gap = gaps[side];
+  if (gap <= 0) return {};
+  const bool alongA = side < 2;  // a strip of columns (it spans held's rows), else of rows
+  const int64_t extent = alongA ? held.height : held.width;
+  const int64_t thickness = std::min<int64_t>(gap, int64_t(texels / uint64_t(extent)));
+  if (thickness < std::min<int64_t>(gap, minThickness)) return {};
+  PatchTextures::Region strip;
+  if (alongA) {
+    strip = {side == 0 ? held.originA - thickness : held.originA + held.width, held.originB, uint32_t(thickness),
+             held.height};
+    held.originA = std::min(held.originA, strip.originA);
+    held.width += uint32_t(thickness);
+  } else {
+    strip = {held.originA, side == 2 ? held.originB - thickness : held.originB + held.height, held.width,
+             uint32_t(thickness)};
+    held.originB = std::min(held.originB, strip.originB);
+    held.height += uint32_t(thickness);
+  }
+  return strip;
 }
+
+}  // namespace
 
 PatchTextures::Plan PatchTextures::plan(const PatchLayout& desired, uint64_t texelBudget) const {
   Plan plan;
   plan.layout = desired;
-  plan.usable.assign(desired.levels.size(), true);
+  const size_t count = desired.levels.size();
+  plan.usable.assign(count, false);
+  plan.held.assign(count, Region{});
+  plan.work.assign(count, {});
+  const int64_t res = settings_.resolution;
   uint64_t spent = 0;
+  // Nothing held anywhere (the first frame, or after invalidate()): a load, built whole.
+  if (std::all_of(contents_.begin(), contents_.end(), [](const LayerContent& c) { return c.held.empty(); }))
+    texelBudget = 0;
   // Coarsest first: a coarse level stands in for every finer one that waits.
-  for (size_t j = desired.levels.size(); j-- > 0;) {
+  for (size_t j = count; j-- > 0;) {
     const PatchLevel& level = desired.levels[j];
     if (level.layer >= contents_.size()) continue;  // update() reports the bad layer
-    uint64_t texels = 0;
-    for (const Region& r : staleRegions(desired.face, level)) texels += uint64_t(r.width) * r.height;
-    if (texels == 0) continue;
-    if (texelBudget == 0 || spent == 0 || spent + texels <= texelBudget) {
-      spent += texels;
-      continue;
-    }
-    ++plan.deferred;
-    const LayerContent& held = contents_[level.layer];
-    if (held.valid && held.face == desired.face && held.exponent == level.exponent) {
-      plan.layout.levels[j].originA = held.originA;
-      plan.layout.levels[j].originB = held.originB;
+    const Region window{level.originA, level.originB, uint32_t(res), uint32_t(res)};
+    Region held = heldOf(desired.face, level);
+    std::vector<Region>& work = plan.work[j];
+    if (texelBudget == 0) {
+      work = missingRegions(window, held);
+      held = window;
+    } else if (held.empty()) {
+      // A square at the window's centre, as large as the budget left allows (in steps of the
+      // workgroup), at least kMinStripTexels wide for the first level with work.
+      const uint64_t left = texelBudget > spent ? texelBudget - spent : 0;
+      uint32_t side = std::min<uint32_t>(uint32_t(res), uint32_t(std::sqrt(double(left))));
+      side -= side % gpu::kPatchWorkgroupSize;
+      if (side < kMinStripTexels && spent == 0) side = std::min<uint32_t>(uint32_t(res), kMinStripTexels);
+      if (side >= std::min<uint32_t>(uint32_t(res), kMinStripTexels)) {
+        const int64_t offset = (res - side) / 2;
+        held = {level.originA + offset, level.originB + offset, side, side};
+        work.push_back(held);
+        spent += held.texels();
+      }
     } else {
-      plan.usable[j] = false;
+      for (uint32_t r = 0; r < kRegionsPerLevel; ++r) {
+        const uint64_t left = texelBudget > spent ? texelBudget - spent : 0;
+        // The first strip of a frame is never refused for the budget: every frame makes progress.
+        const uint64_t allowed = spent == 0 ? std::max<uint64_t>(left, uint64_t(kMinStripTexels) * res) : left;
+        const Region strip = growHeld(window, held, allowed, kMinStripTexels);
+        if (strip.empty()) break;
+        work.push_back(strip);
+        spent += strip.texels();
+      }
     }
+    plan.usable[j] = !held.empty();
+    plan.held[j] = held;
+    if (held != window) ++plan.deferred;
   }
   return plan;
 }
 
-uint32_t PatchTextures::updateLevels(VkCommandBuffer cmd, const PatchLayout& layout, const std::vector<bool>& usable,
-                                     uint32_t slot) {
-  vk::checkFrameSlot(slot);
+void PatchTextures::checkLayout(const PatchLayout& layout) const {
   if (layout.resolution != settings_.resolution)
     throw Error(fmt::format("patch layout resolution {} differs from the patch textures' {}", layout.resolution,
                             settings_.resolution));
@@ -315,13 +377,34 @@ uint32_t PatchTextures::updateLevels(VkCommandBuffer cmd, const PatchLayout& lay
       throw Error(fmt::format("patch level exponent must be in [{}, {}], got {}", -kMaxAbsExponent, kMaxAbsExponent,
                               level.exponent));
   }
+}
+
+uint32_t PatchTextures::update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot) {
+  vk::checkFrameSlot(slot);
+  checkLayout(layout);
+  return update(cmd, plan(layout, 0), slot);
+}
+
+uint32_t PatchTextures::update(VkCommandBuffer cmd, const Plan& planned, uint32_t slot) {
+  vk::checkFrameSlot(slot);
+  const size_t count = planned.layout.levels.size();
+  if (planned.usable.size() != count || planned.held.size() != count || planned.work.size() != count)
+    throw Error(fmt::format("patch plan has {} levels and {} usable flags, {} held regions, {} work lists", count,
+                            planned.usable.size(), planned.held.size(), planned.work.size()));
+  checkLayout(planned.layout);
   // The planet's layer types or hashes changed: the height pipeline is specialized on them.
   // A frame of the other slot may still use the old pipelines and sets: wait for it (rare).
+  // Every level is then built whole, which holds at least what the plan said it would.
+  const Plan* plan = &planned;
+  Plan whole;
   if (layerSpecialization(data_.planet()) != specialization_) {
     VK_CHECK(vkDeviceWaitIdle(context_.device));
     createPipelines();
     invalidate();
+    whole = this->plan(planned.layout, 0);
+    plan = &whole;
   }
+  const PatchLayout& layout = plan->layout;
 
   struct Work {
     const PatchLevel* level;
@@ -331,14 +414,16 @@ uint32_t PatchTextures::updateLevels(VkCommandBuffer cmd, const PatchLayout& lay
   std::vector<Work> work;
   uint32_t levelsTouched = 0;
   lastUpdateTexels_ = 0;
-  for (size_t j = 0; j < layout.levels.size(); ++j) {
-    if (!usable[j]) continue;
+  for (size_t j = 0; j < count; ++j) {
+    const std::vector<Region>& regions = plan->work[j];
+    if (regions.size() > kRegionsPerLevel)
+      throw Error(fmt::format("patch plan has {} regions for level {}, at most {}", regions.size(), j,
+                              kRegionsPerLevel));
     const PatchLevel& level = layout.levels[j];
-    const std::vector<Region> regions = staleRegions(layout.face, level);
     levelsTouched += regions.empty() ? 0 : 1;
     for (size_t r = 0; r < regions.size(); ++r) {
       work.push_back({&level, regions[r], &regions_[size_t(level.layer) * kRegionsPerLevel + r]});
-      lastUpdateTexels_ += uint64_t(regions[r].width) * regions[r].height;
+      lastUpdateTexels_ += regions[r].texels();
     }
   }
   if (work.empty()) return 0;
@@ -369,9 +454,9 @@ uint32_t PatchTextures::updateLevels(VkCommandBuffer cmd, const PatchLayout& lay
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
-  for (size_t j = 0; j < layout.levels.size(); ++j) {
+  for (size_t j = 0; j < count; ++j) {
     const PatchLevel& level = layout.levels[j];
-    if (usable[j]) contents_[level.layer] = {true, layout.face, level.exponent, level.originA, level.originB};
+    if (!plan->work[j].empty()) contents_[level.layer] = {layout.face, level.exponent, plan->held[j]};
   }
   return levelsTouched;
 }

@@ -16,6 +16,8 @@
 // the same exponent, keeps every texel it still covers in place and computes only the one or two
 // strips it newly covers (one recentre step: an eighth of the level). A level is rebuilt whole
 // when its face or exponent changed, it moved by a whole level or more, or after invalidate().
+// Under a per-frame budget (plan()) a layer may hold only a rectangle of its level, grown by
+// strips over frames; the terrain samples it there only (FrameUniforms::patchBounds).
 // Samplers wrap (VK_SAMPLER_ADDRESS_MODE_REPEAT) and the terrain adds each level's storage
 // offset (FrameUniforms::patchWrap).
 //
@@ -76,20 +78,46 @@ class PatchTextures {
   // outside [−60, 60], or a bad slot; then nothing was recorded or marked up to date.
   uint32_t update(VkCommandBuffer cmd, const PatchLayout& layout, uint32_t slot = 0);
 
-  // A frame's share of the work toward `desired` (issue 12, point 5: patch strips spread over
-  // frames so that no frame pays for several whole levels). Levels are taken coarsest first
-  // while their stale texels fit in `texelBudget` (0: no limit; the first level with work is
-  // always taken, so every frame makes progress). A level left for later keeps what its layer
-  // holds if that is the same level (same face and exponent, an older centre: still exact
-  // terrain, its coverage a little off-centre), else it is not sampled this frame (`usable`
-  // false: the terrain's shader hands its weight to coarser levels).
-  struct Plan {
-    PatchLayout layout;        // per level: the desired placement, or what its layer holds
-    std::vector<bool> usable;  // per level
-    uint32_t deferred = 0;     // levels whose work was left for later frames
+  // A rectangle of a level's texels by face index: [originA, originA + width) × [originB,
+  // originB + height), within the level's window.
+  struct Region {
+    int64_t originA = 0;
+    int64_t originB = 0;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    bool empty() const { return width == 0 || height == 0; }
+    uint64_t texels() const { return uint64_t(width) * height; }
+    bool operator==(const Region&) const = default;
   };
+
+  // A frame's share of the work toward `desired` (issue 12, point 5: patch work spread over
+  // frames so that no frame pays for a whole level). What a layer holds is a rectangle of its
+  // level's window; a frame extends it by strips, so a level is usable, over what it holds, from
+  // its first strip on: the terrain samples each level only inside its held rectangle and hands
+  // the rest of its weight to coarser levels. Levels are taken coarsest first (a coarse level
+  // stands in for every finer one that waits) while their strips fit in `texelBudget`:
+  //  - 0, no limit: every level is brought up to date (what it newly covers, or all of it);
+  //  - else a level held nowhere starts with a square at its centre (the camera's ground), and
+  //    one held in part grows by at most kRegionsPerLevel strips, each along the side farthest
+  //    from the window's edge, as thick as the budget left allows. The first level with work
+  //    always gets at least a strip kMinStripTexels thick, so every frame makes progress.
+  // While no layer holds anything (the first frame, or after invalidate()) the budget does not
+  // apply: that frame is a load, and everything is built whole.
+  struct Plan {
+    PatchLayout layout;                     // the desired placement of every level
+    std::vector<bool> usable;               // per level: it holds some texels after this frame's work
+    std::vector<Region> held;               // per level: what its layer holds after this frame's work
+    std::vector<std::vector<Region>> work;  // per level: the strips this frame computes
+    uint32_t deferred = 0;                  // levels not whole after this frame's work
+  };
+  // Strips thinner than this are left for a later frame (the height pass computes a one-texel
+  // border around each, and a frame's fixed costs are per strip).
+  static constexpr uint32_t kMinStripTexels = 16;
+  // A level's update writes at most two regions (the strip along a and the one along b).
+  static constexpr uint32_t kRegionsPerLevel = 2;
   Plan plan(const PatchLayout& desired, uint64_t texelBudget) const;
-  // update() of a plan's layout, skipping the levels it marks unusable.
+  // Records the plan's work (see update() above for the rest). The plan must be the last one
+  // made, for this PatchTextures, with no update() since.
   uint32_t update(VkCommandBuffer cmd, const Plan& plan, uint32_t slot = 0);
 
   // Marks every level stale, e.g. after the planet's parameters changed.
@@ -112,23 +140,13 @@ class PatchTextures {
   const PatchSettings& settings() const { return settings_; }
 
  private:
-  // What a layer holds; valid = false after construction and invalidate().
+  // What a layer holds: a rectangle of one level's texels (empty after construction and
+  // invalidate()).
   struct LayerContent {
-    bool valid = false;
     int face = 0;
     int exponent = 0;
-    int64_t originA = 0;
-    int64_t originB = 0;
+    Region held;
   };
-  // A rectangle of a level's texels by face index: [originA, originA + width) × [originB, ...).
-  struct Region {
-    int64_t originA = 0;
-    int64_t originB = 0;
-    uint32_t width = 0;
-    uint32_t height = 0;
-  };
-  // A level's update writes at most two regions: the strip along a and the one along b.
-  static constexpr uint32_t kRegionsPerLevel = 2;
   // The host-visible buffers and the descriptor sets that point at them, one per frame slot.
   struct RegionResources {
     vk::Owned<vk::Buffer> level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
@@ -147,10 +165,10 @@ class PatchTextures {
   // (Re)creates both pipelines, the height one specialized for the planet's current layers,
   // and points each region's descriptor sets at its resources.
   void createPipelines();
-  // The regions of `level` its layer does not hold yet (none when it holds all of it).
-  std::vector<Region> staleRegions(int face, const PatchLevel& level) const;
-  uint32_t updateLevels(VkCommandBuffer cmd, const PatchLayout& layout, const std::vector<bool>& usable,
-                        uint32_t slot);
+  // What `level`'s layer holds of the level's window (empty if it holds another level).
+  Region heldOf(int face, const PatchLevel& level) const;
+  // Throws for a layout that does not fit the settings (see update()).
+  void checkLayout(const PatchLayout& layout) const;
   void writeRegion(const PatchLayout& layout, const PatchLevel& level, const Region& region,
                    RegionResources& resources, uint32_t slot);
 

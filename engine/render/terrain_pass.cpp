@@ -559,14 +559,21 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
     u.faceAxisB = glm::vec4(glm::vec3(face.axisB), float(glm::dot(ref, face.axisB)));
     u.faceNormal = glm::vec4(glm::vec3(face.normal), float(glm::dot(ref, face.normal)));
     u.refMinusNadir = glm::vec4(glm::vec3(ref - o.nadirDirection()), float(layout.levels.size()));
-    // Each level as the textures will hold it this frame (PatchTextures::plan: a level whose
-    // work waits keeps its older centre, or is not sampled, layer −1).
+    // Each level as the textures will hold it this frame (PatchTextures::plan): a level whose
+    // work is spread over frames is sampled only over the rectangle its layer holds, and not at
+    // all (layer −1) while it holds nothing.
+    const double res = double(layout.resolution);
     for (size_t j = 0; j < layout.levels.size(); ++j) {
       const PatchLevel& level = patchPlan_.layout.levels[j];
       const double texel = std::ldexp(1.0, level.exponent);
       u.patchLevels[j] = glm::vec4(patchPlan_.usable[j] ? float(level.layer) : -1.0f,
                                    float(1.0 / (texel * layout.resolution)),
                                    float(refA - double(level.originA) * texel), float(refB - double(level.originB) * texel));
+      const PatchTextures::Region& held = patchPlan_.held[j];
+      u.patchBounds[j] = glm::vec4(float(double(held.originA - level.originA) / res),
+                                   float(double(held.originB - level.originB) / res),
+                                   float(double(held.originA + held.width - level.originA) / res),
+                                   float(double(held.originB + held.height - level.originB) / res));
       const glm::vec2 wrap = PatchTextures::storageOffset(level, layout.resolution);
       if (j % 2 == 0) {
         u.patchWrap[j / 2].x = wrap.x;

@@ -76,8 +76,9 @@ struct TerrainSettings {
   // (clipmap_culling.h); off, every drawn ring whole (for tests that read every vertex back).
   bool frustumCulling = true;
   // At most this many patch texels written a frame (0: no limit): levels whose work does not fit
-  // wait for later frames, coarsest first (PatchTextures::plan). The viewer and the benchmark
-  // set it, so that a frame never builds several whole levels; a single render builds all.
+  // grow by strips over later frames, coarsest first (PatchTextures::plan). The viewer and the
+  // benchmark set it (realTimePatchBudget), so that no frame builds a whole level; a single render
+  // builds all.
   uint64_t patchTexelsPerFrame = 0;
   bool lights = true;         // city lights on the night side (planets whose preset has [lights])
   // Whether other bodies may hide the sun (a scene): off, the shaders leave the eclipse code out
@@ -219,6 +220,8 @@ class TerrainPass {
   // Per-pixel detail from the patch textures (built on first use, after waiting for the device
   // to be idle); off, the vertex normals shade the ground (bodies a few pixels across).
   void setPatchesEnabled(bool patches) { settings_.patches = patches; }
+  // TerrainSettings::patchTexelsPerFrame from the next frame on (0: no limit).
+  void setPatchTexelsPerFrame(uint64_t texels) { settings_.patchTexelsPerFrame = texels; }
   // Marks every patch level stale: the next frame that samples them builds them whole.
   void invalidatePatches();
   // The body's rings, whose shadow darkens the ground (null: none).

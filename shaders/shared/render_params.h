@@ -82,6 +82,10 @@ struct FrameUniforms {
   // Per level, two to a vec4 (level 2k in xy, 2k + 1 in zw): where its texel (0, 0) is stored,
   // in texture coordinates (toroidal storage, shared/patch_params.h).
   vec4 patchWrap[kPatchMaxLevelsGpu / 2u];
+  // Per level: the part of it its layer holds this frame, in the level's texture coordinates
+  // (u₀, v₀, u₁, v₁; (0, 0, 1, 1) when whole): a level built over several frames
+  // (PatchTextures::plan) is sampled only there.
+  vec4 patchBounds[kPatchMaxLevelsGpu];
   AtmosphereParams atmosphere;
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[kSkyIrradianceSamplesGpu];
@@ -115,7 +119,7 @@ struct FrameUniforms {
   // pipeline's kSpecLights is set.
   LightsParams lights;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2048 + 272 + 48)
+GPU_ASSERT_SIZE(FrameUniforms, 2304 + 272 + 48)
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
