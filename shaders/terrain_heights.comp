@@ -37,10 +37,12 @@ void main() {
   MeshVertex v = mesh[index];
   vec3 offsetLocal = surfaceOffsetLocal(v);
   vec3 offsetPlanet = mat3(frame.localToPlanet) * offsetLocal;
-  vec4 heightGradient = surfaceHeightGradient(offsetPlanet, floatBitsToUint(v.polar.z));
-  vec4 surfaceValue = vec4(offsetLocal, heightGradient.x);
-  vec4 normalValue = vec4(surfaceNormal(heightGradient, v.direction.xyz), 0.0f);
   vec4 attributeValue = surfaceAttributes(offsetPlanet, v);
+  float height;
+  vec3 normal;
+  vertexSurface(offsetPlanet, v, attributeValue, height, normal);
+  vec4 surfaceValue = vec4(offsetLocal, height);
+  vec4 normalValue = vec4(normal, 0.0f);
   if (inRange) {
     surface[index] = surfaceValue;
     normals[index] = normalValue;

@@ -28,17 +28,19 @@ void main() {
   MeshVertex v = mesh[index];
   vec3 offsetLocal = surfaceOffsetLocal(v);
   vec3 offsetPlanet = mat3(frame.localToPlanet) * offsetLocal;
-  vec4 heightGradient = surfaceHeightGradient(offsetPlanet, floatBitsToUint(v.polar.z));
-  float height = heightGradient.x;
+  vec4 attributes = surfaceAttributes(offsetPlanet, v);
+  float height;
+  vec3 normal;
+  vertexSurface(offsetPlanet, v, attributes, height, normal);
   vec3 up = v.direction.xyz;
   bool ocean = frame.planet.y > 0.5f;
   float shown = kNoiseVertexWater != 0u ? frame.planet.x : ocean ? max(height, frame.planet.x) : height;
   vec3 position = offsetLocal + shown * up - vec3(0.0f, 0.0f, frame.camera.x);
   float towardCamera = kNoiseVertexWater != 0u ? kWaterTowardCamera : 0.0f;
   gl_Position = frame.viewProjection * vec4(position * (1.0f - towardCamera), 1.0f);
-  outNormal = surfaceNormal(heightGradient, up);
+  outNormal = normal;
   outUp = up;
-  outAttributes = surfaceAttributes(offsetPlanet, v);
+  outAttributes = attributes;
   outHeight = height;
   outToCamera = -position;
 }

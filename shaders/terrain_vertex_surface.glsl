@@ -19,7 +19,13 @@ layout(std430, set = 0, binding = kRenderBindingShifts) readonly buffer Shifts {
 layout(std430, set = 0, binding = kRenderBindingPermutations) readonly buffer Permutations { uint permutations[]; };
 layout(std430, set = 0, binding = kRenderBindingBudgets) readonly buffer Budgets { RingBudget budgets[]; };
 
+// The patch textures (patch_textures.h): texel = (unit normal, planet frame; height, m).
+layout(set = 0, binding = kRenderBindingPatches) uniform sampler2DArray patches;
+
 uint gPermutationBase = 0u;
+// False for a vertex whose surface comes from the patch textures (vertexSurface): its layers are
+// evaluated with no octaves (on lavapipe an octave loop ends as soon as all its lanes are done).
+bool gEvaluateNoise = true;
 #define PERM(i) permutations[gPermutationBase + (i)]
 #define OCTAVE_REMAINDER(layer, i) remainders[(layer) * kNoiseMaxOctaves + (i)]
 #define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
@@ -67,7 +73,7 @@ NoiseParams layerParams(uint l, uint ring, bool needed) {
   uint type = layers[l].noise.type;
   uint hash = layers[l].noise.hash;
 #endif
-  uint octaves = needed ? budgets[ring].octaves[l] : 0u;
+  uint octaves = needed && gEvaluateNoise ? budgets[ring].octaves[l] : 0u;
   return terrainLayerParams(layers[l].noise, type, hash, octaves, budgets[ring].lastOctaveWeight[l]);
 }
 
@@ -108,14 +114,57 @@ vec3 surfaceNormal(vec4 heightGradient, vec3 up) {
   return normalize(normal);
 }
 
-// Shading attributes at `offsetPlanet` of mesh vertex v (common/surface_attributes.glsl). The
-// vertex spacing is its ring's circumference over the vertices per ring (CPU: the same).
+// The spacing of mesh vertex v: its ring's circumference over the vertices per ring (CPU: the same).
+float vertexSpacingM(MeshVertex v) { return frame.camera.y * sin(v.polar.x) * (6.2831853f / float(push.numPhi)); }
+
+// The patch texel (normal in the planet frame, height) at face offset `face` (attributes.xy)
+// from the level whose texels are no wider than `spacingM`, the vertex spacing (the coarsest
+// such: its texels carry the octaves of a spacing between half the vertex's and the vertex's),
+// the finest where even its texels are wider; false where that level's layer does not hold the
+// vertex (and one texel inside, for the bilinear filter), where even the coarsest level's texels
+// are under half the spacing, or there are no levels. A texel's width
+// is at most R·Δ (Δ its size in face units: the gnomonic projection only shrinks it).
+bool patchTexelAt(vec2 face, float spacingM, out vec4 texel) {
+  texel = vec4(0.0f);
+  uint levels = uint(frame.refMinusNadir.w);
+  if (levels == 0u) return false;
+  float resolution = float(textureSize(patches, 0).x);
+  float finestTexelM = frame.camera.y / (frame.patchLevels[0].y * resolution);
+  float coarser = floor(log2(max(spacingM / finestTexelM, 1.0f)));
+  // Past the coarsest level's reach its texels carry octaves far finer than the vertices could
+  // sample without aliasing: the noise, band-limited to the ring, takes over.
+  bool fine = coarser < float(levels);
+  uint j = uint(min(coarser, float(levels - 1u)));
+  vec4 level = frame.patchLevels[j];
+  vec2 uv = (face + level.zw) * level.y;
+  vec4 bounds = frame.patchBounds[j] + vec4(1.0f, 1.0f, -1.0f, -1.0f) / resolution;
+  bool held = fine && level.x >= 0.0f && all(greaterThanEqual(uv, bounds.xy)) && all(lessThanEqual(uv, bounds.zw));
+  vec4 wrap = frame.patchWrap[j >> 1u];
+  vec2 stored = uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw);
+  texel = textureLod(patches, vec3(stored, max(level.x, 0.0f)), 0.0f);
+  return held;
+}
+
+// Height (m above the radius sphere) and normal (local frame) of mesh vertex v at `offsetPlanet`,
+// with its attributes (surfaceAttributes): from the patch textures where a level fine enough
+// holds the vertex (patchTexelAt: the same terrain, evaluated once per texel, fixed to the
+// planet), else from the noise stack with its ring's octaves. Near the camera, where the
+// vertices are densest and need the most octaves, the patches hold them all.
+void vertexSurface(vec3 offsetPlanet, MeshVertex v, vec4 attributes, out float height, out vec3 normal) {
+  vec4 texel;
+  bool fromPatch = patchTexelAt(attributes.xy, vertexSpacingM(v), texel);
+  gEvaluateNoise = !fromPatch;
+  vec4 heightGradient = surfaceHeightGradient(offsetPlanet, floatBitsToUint(v.polar.z));
+  gEvaluateNoise = true;
+  height = fromPatch ? texel.w : heightGradient.x;
+  normal = fromPatch ? normalize(mat3(frame.planetToLocal) * texel.xyz) : surfaceNormal(heightGradient, v.direction.xyz);
+}
+
+// Shading attributes at `offsetPlanet` of mesh vertex v (common/surface_attributes.glsl).
 vec4 surfaceAttributes(vec3 offsetPlanet, MeshVertex v) {
-  float radius = frame.camera.y;
-  float spacing = radius * sin(v.polar.x) * (6.2831853f / float(push.numPhi));
-  return terrainSurfaceAttributes(offsetPlanet, radius, frame.localToPlanet[2].xyz, frame.refMinusNadir.xyz,
-                                  frame.faceNormal, frame.faceAxisA, frame.faceAxisB, push.bandFrequency, spacing,
-                                  push.regionalWeight);
+  return terrainSurfaceAttributes(offsetPlanet, frame.camera.y, frame.localToPlanet[2].xyz, frame.refMinusNadir.xyz,
+                                  frame.faceNormal, frame.faceAxisA, frame.faceAxisB, push.bandFrequency,
+                                  vertexSpacingM(v), push.regionalWeight);
 }
 
 #endif

@@ -16,6 +16,7 @@
 
 #include "core/image_file.h"
 #include "gpu_fixture.h"
+#include "render/patch_layout.h"
 #include "render/renderer.h"
 #include "vk/buffer.h"
 
@@ -26,8 +27,9 @@ using HeightSources = GpuTest;
 
 // A smaller mesh than the default (8 rings per level, 64 vertices per ring) keeps the vertex
 // shader variant, which evaluates the noise stack per drawn vertex, to a few seconds on lavapipe.
-RenderSettings settingsFor(HeightSource source) {
+RenderSettings settingsFor(HeightSource source, bool patches = true) {
   RenderSettings settings;
+  settings.terrain.patches = patches;
   settings.width = 160;
   settings.height = 90;
   settings.terrain.mesh = ClipmapParams{30, 8, 64};
@@ -46,8 +48,8 @@ struct Rendered {
   std::vector<glm::vec3> ups;      // the mesh's sphere normals (local frame)
 };
 
-Rendered render(vk::Context& context, const PlanetDescription& planet, HeightSource source) {
-  Renderer renderer(context, planet, settingsFor(source));
+Rendered render(vk::Context& context, const PlanetDescription& planet, HeightSource source, bool patches = true) {
+  Renderer renderer(context, planet, settingsFor(source, patches));
   // Over the land of the default benchmark path, 1.8 km above the ground, looking toward the
   // horizon: relief, coast, near and far rings in one view.
   RenderResult result = renderer.render({33.8, -90.0, 3500.0, 30.0, -12.0}, {150.0, 30.0});
@@ -83,21 +85,24 @@ TEST_F(HeightSources, VertexShaderAndCpuHeightsDrawTheComputePicture) {
   EXPECT_EQ(cpu.frame.verticesEvaluated, compute.frame.verticesEvaluated);
   EXPECT_GT(cpu.frame.cpuHeightsMs, 0.0);
 
-  // The CPU evaluates the same float path as the shader; only sin/cos of the vertex angles
-  // round differently, which moves a far sample a little: by its height difference times the
-  // slope there (measured: 12 mm at most here, on the hills the view looks across).
+  // The CPU evaluates the same float path as the shader's noise (compared without the patch
+  // levels, which give the compute pass the vertices they hold: next test); only sin/cos of the
+  // vertex angles round differently, which moves a far sample a little: by its height
+  // difference times the slope there (measured: 12 mm at most here, on the hills the view looks
+  // across).
+  const Rendered evaluated = render(context(), planet, HeightSource::Compute, false);
   double worst = 0.0;
   const uint32_t n = settingsFor(HeightSource::Cpu).terrain.mesh.numPhi;
-  for (uint32_t ring = compute.frame.heightFirstRing; ring <= compute.frame.heightLastRing; ++ring)
+  for (uint32_t ring = evaluated.frame.heightFirstRing; ring <= evaluated.frame.heightLastRing; ++ring)
     for (uint32_t i = 0; i < n; ++i)
-      worst = std::max(worst, double(std::abs(cpu.surface[ring * n + i].w - compute.surface[ring * n + i].w)));
+      worst = std::max(worst, double(std::abs(cpu.surface[ring * n + i].w - evaluated.surface[ring * n + i].w)));
   std::printf("CPU vs compute heights: max difference %.6f m\n", worst);
   EXPECT_LT(worst, 0.025);
   // Their normals come from the same gradient formulas (terrain_vertex_surface.glsl, surfaceNormalCpu).
   double worstAngle = 0.0;
-  for (uint32_t i = compute.frame.heightFirstRing * n; i < (compute.frame.heightLastRing + 1) * n; ++i)
-    worstAngle = std::max(worstAngle, angleDeg(glm::vec3(cpu.normals[i]), glm::vec3(compute.normals[i])));
-  worstAngle = std::max(worstAngle, angleDeg(glm::vec3(cpu.normals.back()), glm::vec3(compute.normals.back())));
+  for (uint32_t i = evaluated.frame.heightFirstRing * n; i < (evaluated.frame.heightLastRing + 1) * n; ++i)
+    worstAngle = std::max(worstAngle, angleDeg(glm::vec3(cpu.normals[i]), glm::vec3(evaluated.normals[i])));
+  worstAngle = std::max(worstAngle, angleDeg(glm::vec3(cpu.normals.back()), glm::vec3(evaluated.normals.back())));
   std::printf("CPU vs compute normals: max difference %.4f deg\n", worstAngle);
   EXPECT_LT(worstAngle, 0.05);
 
@@ -105,7 +110,9 @@ TEST_F(HeightSources, VertexShaderAndCpuHeightsDrawTheComputePicture) {
   const double psnrCpu = psnrRgb(cpu.image, compute.image);
   std::printf("PSNR against compute heights: vertex shader %.2f dB, CPU %.2f dB\n", psnrVertex, psnrCpu);
   // Threshold: 40 dB, as the golden images (a few pixels of rasteriser rounding). Measured on
-  // lavapipe: identical images (infinite PSNR) for both.
+  // lavapipe: identical images (infinite PSNR) for the vertex shader, which takes the vertices
+  // the patch levels hold from them as the compute pass does; 54 dB for the CPU, which
+  // evaluates every vertex.
   EXPECT_GE(psnrVertex, 40.0);
   EXPECT_GE(psnrCpu, 40.0);
   if (HasFailure()) {
@@ -113,6 +120,50 @@ TEST_F(HeightSources, VertexShaderAndCpuHeightsDrawTheComputePicture) {
     saveOnFailure(vertex.image, "vertex_shader.png");
     saveOnFailure(cpu.image, "cpu.png");
   }
+}
+
+// The vertices a patch level holds take its texels (terrain_vertex_surface.glsl, vertexSurface):
+// the level whose texels are no wider than the vertex spacing, so the mesh carries the octaves
+// down to a texel's budget (one more than its ring's, at most), evaluated once per texel instead
+// of once per vertex and frame. Against the noise at the ring's octaves (the patches turned off):
+// the rings near the camera differ, by the extra octave and the filter (bounded here by the
+// vertex spacing); the rings beyond the coarsest level's reach are the same bit for bit.
+TEST_F(HeightSources, VerticesThePatchLevelsHoldTakeTheirTexels) {
+  const PlanetDescription planet = resolvePreset("earth");
+  const Rendered patched = render(context(), planet, HeightSource::Compute, true);
+  const Rendered evaluated = render(context(), planet, HeightSource::Compute, false);
+  ASSERT_EQ(patched.frame.heightFirstRing, evaluated.frame.heightFirstRing);
+  ASSERT_EQ(patched.frame.heightLastRing, evaluated.frame.heightLastRing);
+  const PatchLayout& layout = patched.frame.patchLayout;
+  ASSERT_FALSE(layout.levels.empty());
+  const double finestTexelM = patchTexelSpacingM(layout, layout.levels[0], planet.radiusM);
+  const uint32_t n = settingsFor(HeightSource::Compute).terrain.mesh.numPhi;
+  // Rings are numbered from the outside in: the camera's are the last.
+  uint32_t lastSameRing = patched.frame.heightFirstRing - 1, differing = 0, same = 0;
+  double worstRatio = 0.0;
+  for (uint32_t ring = patched.frame.heightFirstRing; ring <= patched.frame.heightLastRing; ++ring) {
+    bool ringSame = true;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t k = ring * n + i;
+      const double difference = std::abs(double(patched.surface[k].w) - double(evaluated.surface[k].w));
+      // The vertex spacing: its ring's circumference over the vertices per ring.
+      const glm::vec3 up = patched.ups[k];
+      const double spacing = planet.radiusM * std::sqrt(double(up.x * up.x + up.y * up.y)) * 2.0 *
+                             3.14159265358979 / double(n);
+      worstRatio = std::max(worstRatio, difference / std::max(spacing, finestTexelM));
+      ringSame = ringSame && difference == 0.0;
+      (difference == 0.0 ? same : differing) += 1;
+    }
+    if (ringSame && lastSameRing + 1 == ring) lastSameRing = ring;
+  }
+  std::printf("[ measured ] %u vertices from the patch levels' texels, %u from the noise (every one of rings %u..%u); "
+              "largest height difference %.3f of the larger of the vertex and the finest texel spacing (%.1f m)\n",
+              differing, same, patched.frame.heightFirstRing, lastSameRing, worstRatio, finestTexelM);
+  EXPECT_GT(differing, 16u * n) << "the rings near the camera come from the patches";
+  EXPECT_GT(lastSameRing, patched.frame.heightFirstRing + 16u) << "the far rings are the noise's";
+  EXPECT_LT(lastSameRing + 16u, patched.frame.heightLastRing);
+  // The extra octave, or the octaves below the finest texel's budget: measured 0.27 here.
+  EXPECT_LT(worstRatio, 0.5);
 }
 
 // The analytic normals are the drawn surface's: the normals the old pass took from the mesh's

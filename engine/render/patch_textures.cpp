@@ -430,9 +430,10 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const Plan& planned, uint32_
 
   for (const Work& w : work) writeRegion(layout, *w.level, w.region, *w.resources, slot);
 
-  // Earlier frames' fragment shaders may still sample these layers and an earlier update's
-  // passes used the height buffers: both finish before the new writes (write-after-read).
-  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  // Earlier frames' terrain may still sample these layers and an earlier update's passes used
+  // the height buffers: both finish before the new writes (write-after-read).
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, heightPipeline_->pipeline);
@@ -450,9 +451,12 @@ uint32_t PatchTextures::update(VkCommandBuffer cmd, const Plan& planned, uint32_
                             &w.resources->normalSet[slot], 0, nullptr);
     vkCmdDispatch(cmd, w.resources->normalGroupsA, w.resources->normalGroupsB, 1);
   }
-  // The terrain's fragment shader samples the new texels.
+  // The terrain samples the new texels: its heights pass, its vertex shader (the vertex-shader
+  // height source) and its fragment shader.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 
   for (size_t j = 0; j < count; ++j) {
     const PatchLevel& level = layout.levels[j];

@@ -465,6 +465,11 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   pending_.firstRing = lod.rings.firstRing;
   pending_.lastRing = lod.rings.lastRing;
   pending_.vertices = vertices;
+  // New patch texels change the heights of the vertices they hold.
+  if (std::any_of(patchPlan_.work.begin(), patchPlan_.work.end(),
+                  [](const std::vector<PatchTextures::Region>& w) { return !w.empty(); }))
+    ++patchGeneration_;
+  pending_.patchGeneration = patchGeneration_;
   if (patches) {
     pending_.face = info.patchLayout.face;
     pending_.exponent = info.patchLayout.levels[0].exponent;
@@ -636,6 +641,16 @@ void TerrainPass::recordCpuHeights(VkCommandBuffer cmd, uint32_t firstVertex, ui
 }
 
 void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  // The patch levels first: the heights take the vertices they hold from them
+  // (terrain_vertex_surface.glsl, vertexSurface), as does the vertex-shader source.
+  frame_.patchLevelsRebuilt = 0;
+  frame_.patchTexelsWritten = 0;
+  if (!frame_.patchLayout.levels.empty()) {
+    if (timer) timer->begin(cmd, "patches");
+    frame_.patchLevelsRebuilt = patches_->update(cmd, patchPlan_, slot_);
+    frame_.patchTexelsWritten = patches_->lastUpdateTexels();
+    if (timer) timer->end(cmd);
+  }
   frame_.heightsComputed = !(computed_ && *computed_ == pending_);
   frame_.verticesEvaluated = 0;
   frame_.cpuHeightsMs = 0.0;
@@ -673,14 +688,6 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
     if (timer) timer->end(cmd);
     computed_ = pending_;
-  }
-  frame_.patchLevelsRebuilt = 0;
-  frame_.patchTexelsWritten = 0;
-  if (!frame_.patchLayout.levels.empty()) {
-    if (timer) timer->begin(cmd, "patches");
-    frame_.patchLevelsRebuilt = patches_->update(cmd, patchPlan_, slot_);
-    frame_.patchTexelsWritten = patches_->lastUpdateTexels();
-    if (timer) timer->end(cmd);
   }
 }
 

@@ -366,8 +366,10 @@ class TerrainPass {
     int exponent = 0;
     int64_t originA = 0, originB = 0;
     uint64_t vertices = 0;  // a hash of the culled mesh's vertex chunks
+    uint64_t patchGeneration = 0;  // patchGeneration_ of the frame
     bool operator==(const ComputeKey&) const = default;
   };
+  uint64_t patchGeneration_ = 0;  // frames whose patch plan had work (the heights read the patches)
   std::optional<ComputeKey> computed_;
   ComputeKey pending_;
 };
