@@ -1,6 +1,7 @@
 #version 450
-// The sky-view table (Hillaire 2020, §5.3), rebuilt every frame before the compose pass: the
-// sky's radiance around the camera for this frame's altitude and sun, single and multiple
+// The sky-view table (Hillaire 2020, §5.3), built before the compose pass whenever the altitude or
+// the sun has moved beyond a small tolerance since its last build (SkyPass::skyViewBuilt): the
+// sky's radiance around the camera for the frame's altitude and sun, single and multiple
 // scattering, by view azimuth from the sun and view zenith angle (common/atmosphere.glsl,
 // skyViewTexel; the CPU reference computes the same texels from the same source).
 #extension GL_GOOGLE_include_directive : require

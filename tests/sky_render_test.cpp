@@ -279,6 +279,43 @@ TEST_F(SkyRender, AirlessSkyStaysBlackByDay) {
 // sRGB, as written to PNG) within 30 dB PSNR over the whole 320x180 image, at the ground at noon
 // and at sunset, from 10 km, 100 km and from orbit across the limb, with Earth's clouds and
 // terrain (the aerial-perspective volume covers both) and on Mars.
+// The sky-view table is built again only when its inputs moved beyond SkyPass's tolerances: a
+// frame a little higher than the last build (half the altitude tolerance, 8 m at 2 km) reads the
+// table built for the first and draws what a fresh renderer draws there within 50 dB; 1.5 times
+// the tolerance higher, or the sun 0.1° lower, builds it again; a fresh renderer always builds it.
+TEST_F(SkyRender, TheSkyViewTableIsBuiltAgainOnlyWhenItsInputsMove) {
+  const PlanetDescription planet = resolvePreset("earth");
+  RenderSettings settings = skySettings();
+  settings.sky.clouds = false;
+  Renderer renderer(context(), planet, settings);
+  const SunPose sun{200.0, 8.0};
+  const CameraPose first{33.8, -90.0, 2000.0, 200.0, 5.0};
+  renderer.render(first, sun);
+  EXPECT_TRUE(renderer.sky().skyViewBuilt());
+  renderer.render(first, sun);
+  EXPECT_FALSE(renderer.sky().skyViewBuilt()) << "the same frame again";
+
+  const double tolerance = SkyPass::skyViewAltitudeToleranceM(planet.radiusM, first.altitudeM);
+  EXPECT_NEAR(tolerance, 16.0, 0.5);
+  CameraPose near = first;
+  near.altitudeM += 0.5 * tolerance;
+  const Rgba8Image reused = renderer.render(near, sun).image;
+  EXPECT_FALSE(renderer.sky().skyViewBuilt());
+  Renderer fresh(context(), planet, settings);
+  const Rgba8Image built = fresh.render(near, sun).image;
+  EXPECT_TRUE(fresh.sky().skyViewBuilt());
+  const double psnr = psnrRgb(reused, built);
+  std::printf("[ measured ] with the table built 8 m lower: %.1f dB against a fresh build\n", psnr);
+  EXPECT_GE(psnr, 50.0);
+
+  CameraPose higher = first;
+  higher.altitudeM += 1.5 * tolerance;
+  renderer.render(higher, sun);
+  EXPECT_TRUE(renderer.sky().skyViewBuilt()) << "1.5 tolerances higher";
+  renderer.render(higher, SunPose{sun.azimuthDeg, sun.elevationDeg - 0.1});
+  EXPECT_TRUE(renderer.sky().skyViewBuilt()) << "the sun 0.1 degrees lower";
+}
+
 TEST_F(SkyRender, TablesSkyMatchesTheReferenceMarch) {
   struct View {
     const char* name;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/packing.hpp>
 
@@ -203,10 +204,17 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
   }
 }
 
+double SkyPass::skyViewAltitudeToleranceM(double radiusM, double altitudeM) {
+  const double r = radiusM + std::max(altitudeM, 0.0);
+  return std::max(kSkyViewHorizonToleranceRad * r * std::sqrt(r * r - radiusM * radiusM) / radiusM,
+                  kSkyViewAltitudeSlackM);
+}
+
 void SkyPass::setSettings(const SkySettings& settings) {
   validateSkySettings(settings);
   settings_ = settings;
   makePipelines();
+  skyViewBuiltFor_.reset();
 }
 
 void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot) {
@@ -247,6 +255,15 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const double toHorizon = std::sqrt((altitude - groundSphere) * (2.0 * radius + altitude + groundSphere));
   const double horizonToTop = std::sqrt(std::max(top - groundSphere, 0.0) * (2.0 * radius + top + groundSphere));
   u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), 0.0f, 0.0f);
+  // The sky-view table: built again only when its inputs moved beyond the tolerances.
+  const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
+  const SkyViewInputs* built = skyViewBuiltFor_ ? &*skyViewBuiltFor_ : nullptr;
+  buildSkyView_ =
+      !built || std::memcmp(&built->atmosphere, &inputs.atmosphere, sizeof(inputs.atmosphere)) != 0 ||
+      built->groundSphereM != inputs.groundSphereM ||
+      std::abs(inputs.altitudeM - built->altitudeM) > skyViewAltitudeToleranceM(planet_.radiusM, built->altitudeM) ||
+      std::abs(double(inputs.sunCosZenith) - double(built->sunCosZenith)) > kSkyViewSunTolerance;
+  if (settings_.mode == SkyMode::Tables && buildSkyView_) skyViewBuiltFor_ = inputs;
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
 }
@@ -277,8 +294,10 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tableLayout_.get(), 0, 1, &tableSets_[slot_], 0,
                             nullptr);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
-    vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+    if (buildSkyView_) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
+      vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+    }
     if (timer) timer->next(cmd, "aerial");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);

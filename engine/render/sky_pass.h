@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -122,6 +123,22 @@ class SkyPass {
   // a frame recorded in tables mode has completed.
   std::vector<glm::vec4> readSkyView();
 
+  // The sky-view table depends on the atmosphere, the camera's altitude, the ground sphere and
+  // the sun's zenith angle only (sky_view.comp). A frame whose altitude is within
+  // skyViewAltitudeToleranceM of the one the table was last built for and whose sun's zenith
+  // cosine is within kSkyViewSunTolerance of its, the rest equal, reads that table instead of
+  // building it again: a flight's frames mostly do (400 m/s at 60 fps turns the sun by 1e-6 rad).
+  // The altitude's tolerance moves the horizon (the edge of the ground sphere, sin α = R/(R + h))
+  // by at most kSkyViewHorizonToleranceRad, a tenth of a pixel at 1080p (dα/dh = R / ((R + h)
+  // √((R + h)² − R²))): 9 m at 600 m, 0.1 % of the altitude at 100 km, 11 km at 20,000 km; never
+  // under kSkyViewAltitudeSlackM.
+  static constexpr double kSkyViewHorizonToleranceRad = 1e-4;
+  static constexpr double kSkyViewAltitudeSlackM = 0.5;
+  static constexpr double kSkyViewSunTolerance = 2e-4;
+  static double skyViewAltitudeToleranceM(double radiusM, double altitudeM);
+  // Whether the last prepared frame builds the sky-view table (else it reads the last one built).
+  bool skyViewBuilt() const { return buildSkyView_; }
+
   // Builds now the pipelines that a later change of settings (the clouds toggled) would build
   // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for
   // a compile and no compile's memory comes after a warm-up.
@@ -168,6 +185,15 @@ class SkyPass {
   vk::Owned<VkPipeline> aerialBuild_;
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
   bool tablesInitialised_ = false;                       // the table images left UNDEFINED for GENERAL
+  // What the sky-view table was last built for, and whether the last prepared frame builds it.
+  struct SkyViewInputs {
+    gpu::AtmosphereParams atmosphere{};
+    double altitudeM = 0.0;
+    float groundSphereM = 0.0f;
+    float sunCosZenith = 0.0f;
+  };
+  std::optional<SkyViewInputs> skyViewBuiltFor_;
+  bool buildSkyView_ = true;
   // The cloud pass's samples (setTargets makes them the targets' size; a frame uses the top-left
   // (width / scale) × (height / scale) of them, cloudScale_), in GENERAL.
   vk::Owned<vk::Image> cloudLight_;
