@@ -69,7 +69,8 @@ class PatchTextures {
   // slot still executes, but not while one recorded for the same slot does (wait for its fence).
   // The caller must submit `cmd`, in the order of the update() calls: the levels count as up to
   // date from this call on. The image stays in VK_IMAGE_LAYOUT_GENERAL;
-  // the recorded work ends with a barrier that makes it visible to fragment-shader sampling.
+  // the recorded work ends with a barrier that makes it visible to the terrain's sampling (its
+  // heights pass, vertex and fragment shaders).
   // The height pass is specialized on the planet's layer count, types and hashes; should those
   // differ from the last call's, both pipelines are recreated here (after waiting for the device
   // to be idle: a frame in flight may still use them) and every level rebuilt.
