@@ -19,6 +19,7 @@
 #                               3 timed frames, 4,096 validation points, 100,000 noise points
 #   GPU_REPORT_SIZE=WxH         frame benchmark size (default 1920x1080)
 #   GPU_REPORT_FRAMES=N         timed frames (default the benchmark's, 120)
+#   GPU_REPORT_COMMIT=HASH      the commit to name when the checkout has no .git (a copied tree)
 set -euo pipefail
 out=${1:-gpu_report}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -54,7 +55,7 @@ echo "gpu_report: planet bench noise ${noise_args[*]}" >&2
 echo "gpu_report: planet bench --compare ${bench_args[*]}" >&2
 "$planet" bench --compare "${bench_args[@]}" --json "$work/frames.json" > "$work/frames.txt"
 
-commit=$(git -C "$root" rev-parse --short HEAD 2> /dev/null || echo unknown)
+commit=${GPU_REPORT_COMMIT:-$(git -C "$root" rev-parse --short HEAD 2> /dev/null || echo unknown)}
 python3 - "$work" "$out" "$commit" "$validate_status" "${bench_args[*]}" << 'EOF'
 import datetime, json, sys
 work, out, commit, validate_status, bench_args = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[5]
