@@ -237,11 +237,17 @@ vec4 mpdNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
   PRECISE real lc = dot3(p, dc);
   PRECISE real total = la + lb + lc;
   if (!(abs(total) > real(1e-30f))) total = real(1e-30f);  // p = 0 only
-  // Two weights are carried, the third is 1 minus them: carried separately, their sum's rounding
-  // would double with every level (2^24 · 6e-8 = 1 at level 24). A point a rounding outside its
-  // face (the face choice and the weights round differently) is clamped onto it.
-  PRECISE real w0 = max(la / total, real(0.0f));
-  PRECISE real w1 = max(lb / total, real(0.0f));
+  // The descent carries the weights times |total| (u_k = w_k · t), so that it needs no division:
+  // Vulkan rounds +, - and * correctly but lets a division be 2.5 ulp off, and the descent
+  // doubles a weight's error with every level, so a GPU that divided differently would pick a
+  // neighbouring finest triangle near its edges (another slope: `planet validate` on NVIDIA).
+  // With only +, - and * the same triangle is chosen on every driver. Two weights are carried,
+  // the third is t minus them: carried separately, their sum's rounding would double with every
+  // level (2^24 · 6e-8 = 1 at level 24). A point a rounding outside its face (the face choice and
+  // the weights round differently) is clamped onto it.
+  PRECISE real t = abs(total);
+  PRECISE real u0 = max(total < real(0.0f) ? -la : la, real(0.0f));
+  PRECISE real u1 = max(total < real(0.0f) ? -lb : lb, real(0.0f));
 
   // The current triangle: its corners' keys and values, and p's barycentric weights in it (slot k
   // of each child keeps weight ±2 w_k + const, see below).
@@ -272,29 +278,29 @@ vec4 mpdNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
     k1 = k1 * 2u;
     k2 = k2 * 2u;
     scale = scale * real(2.0f);
-    PRECISE real w2 = real(1.0f) - w0 - w1;
-    if (w0 >= real(0.5f)) {
+    PRECISE real u2 = t - u0 - u1;
+    if (real(2.0f) * u0 >= t) {
       // Corner child at corner 0: (c0, m01, m20), weights (2 w0 - 1, 2 w1, 2 w2).
       k1 = m01;
       k2 = m20;
       h1 = v01;
       h2 = v20;
-      w0 = real(2.0f) * w0 - real(1.0f);
-      w1 = real(2.0f) * w1;
-    } else if (w1 >= real(0.5f)) {
+      u0 = real(2.0f) * u0 - t;
+      u1 = real(2.0f) * u1;
+    } else if (real(2.0f) * u1 >= t) {
       k0 = m01;
       k2 = m12;
       h0 = v01;
       h2 = v12;
-      w0 = real(2.0f) * w0;
-      w1 = real(2.0f) * w1 - real(1.0f);
-    } else if (w2 >= real(0.5f)) {
+      u0 = real(2.0f) * u0;
+      u1 = real(2.0f) * u1 - t;
+    } else if (real(2.0f) * u2 >= t) {
       k0 = m20;
       k1 = m12;
       h0 = v20;
       h1 = v12;
-      w0 = real(2.0f) * w0;
-      w1 = real(2.0f) * w1;
+      u0 = real(2.0f) * u0;
+      u1 = real(2.0f) * u1;
     } else {
       // Middle child (m12, m20, m01): p = sum w_k c_k = (1 - 2 w0) m12 + (1 - 2 w1) m20 + (1 - 2 w2) m01.
       k0 = m12;
@@ -303,24 +309,29 @@ vec4 mpdNoiseGradient(IN(NoiseParams) params, INOUT(OctaveWalk) walk) {
       h0 = v12;
       h1 = v20;
       h2 = v01;
-      w0 = real(1.0f) - real(2.0f) * w0;
-      w1 = real(1.0f) - real(2.0f) * w1;
+      u0 = t - real(2.0f) * u0;
+      u1 = t - real(2.0f) * u1;
       orientation = -orientation;
     }
   }
+  PRECISE real w0 = u0 / t;
+  PRECISE real w1 = u1 / t;
   PRECISE real w2 = real(1.0f) - w0 - w1;
   PRECISE real value = h0 * w0 + h1 * w1 + h2 * w2;
 
   // Gradient: value = sum h_k w_k with w_k = orientation · 2^levels · (base weight k) + const, and
-  // d(base weight k)/dp = (d_k - w_k sum_j d_j) / total for the unclamped weights.
+  // d(base weight k)/dp = (d_k - w_k sum_j d_j) / total for the unclamped weights. The three
+  // weights' gradients sum to zero, so the gradient is g0 (h0 - h2) + g1 (h1 - h2): written as
+  // sum g_k h_k it would cancel the corners' common height, ~1, to leave their differences,
+  // ~2^-levels·H, and a rounding of the g_k (a GPU's division) would grow by the ratio.
   PRECISE vec3 dsum = da + db + dc;
   PRECISE real base0 = la / total;
   PRECISE real base1 = lb / total;
-  PRECISE real base2 = lc / total;
   PRECISE vec3 g0 = (da - dsum * base0) / total;
   PRECISE vec3 g1 = (db - dsum * base1) / total;
-  PRECISE vec3 g2 = (dc - dsum * base2) / total;
-  PRECISE vec3 gradient = (g0 * h0 + g1 * h1 + g2 * h2) * (orientation * scale * chainScale);
+  PRECISE real rise0 = h0 - h2;
+  PRECISE real rise1 = h1 - h2;
+  PRECISE vec3 gradient = (g0 * rise0 + g1 * rise1) * (orientation * scale * chainScale);
   return withGradient(value, gradient);
 }
 
