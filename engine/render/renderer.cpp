@@ -575,10 +575,11 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
   result.timings = lastTimings(0);
   result.exposure = lastExposure(0);
   result.terrain = bodies_[primary_].terrain->frame();
-  std::vector<uint8_t> pixels = vk::readbackImage(context_, *color_);
-  result.image.width = settings_.width;
-  result.image.height = settings_.height;
-  result.image.pixels = std::move(pixels);
+  if (readImage_) {
+    result.image.width = settings_.width;
+    result.image.height = settings_.height;
+    result.image.pixels = vk::readbackImage(context_, *color_);
+  }
   if (readHdr) result.hdr = readHdrImage();
   return result;
 }

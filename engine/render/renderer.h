@@ -52,7 +52,7 @@ struct RenderSettings {
 void validateRenderSettings(const RenderSettings& settings);
 
 struct RenderResult {
-  Rgba8Image image;
+  Rgba8Image image;            // the tonemapped frame (empty after setReadImage(false))
   std::vector<glm::vec4> hdr;  // the HDR frame before the tonemap (when asked for)
   TerrainFrameInfo terrain;
   std::vector<vk::GpuTiming> timings;  // per pass, in recording order
@@ -82,6 +82,11 @@ class Renderer {
   // orientation is carried from one to the next, and unchanged heights are not recomputed.
   // `timeS` is the animation phase (clouds, waves); `readHdr` also returns the HDR frame.
   RenderResult render(const CameraPose& camera, const SunPose& sun, double timeS = 0.0, bool readHdr = false);
+  // Whether render() and renderScene() read the tonemapped frame back into RenderResult::image
+  // (default: yes). A benchmark turns it off, so that its frame times are the frame's, as in the
+  // viewer, and not a copy to the host with its staging buffer (on an H200 at 1080p about half
+  // the wall-clock frame); the image is then left empty.
+  void setReadImage(bool read) { readImage_ = read; }
 
   // The two halves of render(), for a caller that records into its own command buffer (the
   // viewer), with up to kFramesInFlight frames in flight: frame slot `slot` (0 ..
@@ -203,6 +208,7 @@ class Renderer {
   std::unique_ptr<LuminancePass> luminance_;  // before the tonemap, which reads its exposure
   std::unique_ptr<TonemapPass> tonemap_;
   double exposureStepS_ = -1.0;  // of the next record(): adaptExposureOver's time, < 0: none
+  bool readImage_ = true;        // render() reads the frame back (setReadImage)
   bool exposureReset_ = false;   // the next adapted frame takes its own exposure outright
   vk::Owned<vk::Image> hdr_;
   vk::Owned<vk::Image> color_;
