@@ -8,9 +8,11 @@
 #   3. planet bench --size 1920x1080 --compare
 #                                          frame times along the default path, and the terrain
 #                                          modes' ratios (vertex shader, CPU heights, no octave limit)
-# and writes OUT_DIR/gpu_report.json (the three reports whole, the device and the commit) and
-# OUT_DIR/gpu_report.txt (a summary naming the device). A validation failure is reported, not
-# fatal: the benchmarks still run, and the script exits 1 at the end.
+#   4. planet render of three views       OUT_DIR/orbit.png, land_1500m.png and ground_sunset.png
+#                                          (960x540), to hold against lavapipe's pictures
+# and writes OUT_DIR/gpu_report.json (the reports whole, the renders' exit codes, the device and
+# the commit) and OUT_DIR/gpu_report.txt (a summary naming the device). A validation failure or a
+# failed render is reported, not fatal: the rest still runs, and the script exits 1 at the end.
 #
 # Usage: tools/gpu_report.sh [OUT_DIR]     (default: ./gpu_report; after a build)
 # Environment:
@@ -20,6 +22,8 @@
 #   GPU_REPORT_SIZE=WxH         frame benchmark size (default 1920x1080)
 #   GPU_REPORT_FRAMES=N         timed frames (default the benchmark's, 120)
 #   GPU_REPORT_COMMIT=HASH      the commit to name when the checkout has no .git (a copied tree)
+#   GPU_REPORT_VALIDATION=1     render the views with the Vulkan validation layers (any message
+#                               fails that render)
 set -euo pipefail
 out=${1:-gpu_report}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -29,11 +33,13 @@ command -v python3 > /dev/null || { echo "gpu_report: python3 is needed to merge
 
 validate_args=()
 noise_args=()
+render_args=(--size 960x540)
 bench_args=(--size "${GPU_REPORT_SIZE:-1920x1080}")
 if [[ ${GPU_REPORT_QUICK:-0} == 1 ]]; then
   validate_args=(--points 4096)
   noise_args=(--points 100000 --repeats 5)
   bench_args=(--size "${GPU_REPORT_SIZE:-160x90}" --frames "${GPU_REPORT_FRAMES:-3}" --warmup 1)
+  render_args=(--size 160x90)
 elif [[ -n ${GPU_REPORT_FRAMES:-} ]]; then
   bench_args+=(--frames "$GPU_REPORT_FRAMES")
 fi
@@ -55,16 +61,37 @@ echo "gpu_report: planet bench noise ${noise_args[*]}" >&2
 echo "gpu_report: planet bench --compare ${bench_args[*]}" >&2
 "$planet" bench --compare "${bench_args[@]}" --json "$work/frames.json" > "$work/frames.txt"
 
+# Three views: Earth from 20,000 km, land from 1.5 km, the ground at sunset looking at the sun
+# (the camera is raised to 2 m above the ground there).
+render_flags=()
+[[ ${GPU_REPORT_VALIDATION:-0} == 1 ]] && render_flags=(--validation)
+renders=()
+for view in "orbit|20,-30,2e7,0,-90|135,35" "land_1500m|33.82,-89.95,1500,60,-8|135,35" \
+            "ground_sunset|33.82,-89.95,496,240,3|240,2"; do
+  IFS='|' read -r name camera sun <<< "$view"
+  echo "gpu_report: planet render --camera $camera --sun $sun ${render_args[*]}" >&2
+  status=0
+  "$planet" "${render_flags[@]}" render --camera "$camera" --sun "$sun" "${render_args[@]}" --out "$out/$name.png" \
+    > "$work/render_$name.txt" 2>&1 || status=$?
+  [[ $status -eq 0 ]] || { echo "gpu_report: the $name render failed (exit $status):" >&2; cat "$work/render_$name.txt" >&2; }
+  renders+=("$name|$camera|$sun|$status")
+done
+
 commit=${GPU_REPORT_COMMIT:-$(git -C "$root" rev-parse --short HEAD 2> /dev/null || echo unknown)}
-python3 - "$work" "$out" "$commit" "$validate_status" "${bench_args[*]}" << 'EOF'
+python3 - "$work" "$out" "$commit" "$validate_status" "${bench_args[*]}" "${GPU_REPORT_VALIDATION:-0}" "${renders[@]}" << 'EOF'
 import datetime, json, sys
 work, out, commit, validate_status, bench_args = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[5]
+validation = sys.argv[6] == "1"
+renders = []
+for entry in sys.argv[7:]:
+    name, camera, sun, status = entry.split("|")
+    renders.append({"file": f"{name}.png", "camera": camera, "sun": sun, "exit": int(status), "validation": validation})
 load = lambda name: json.load(open(f"{work}/{name}.json"))
 validate, noise, frames = load("validate"), load("noise"), load("frames")
 report = {
     "device": frames["device"], "driver": frames["driver"], "commit": commit,
     "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
-    "validate": validate, "bench_noise": noise, "bench_frames": frames,
+    "validate": validate, "bench_noise": noise, "bench_frames": frames, "renders": renders,
 }
 json.dump(report, open(f"{out}/gpu_report.json", "w"), indent=2)
 
@@ -88,8 +115,13 @@ if frames["compare"]:
 if (frames["width"], frames["height"]) == (1920, 1080):
     met = "met" if f["median"] <= 3.3 else "not met"
     lines.append(f"  issue 21 target, 1080p median <= 3.3 ms: {met}")
+failed = [r["file"] for r in renders if r["exit"] != 0]
+lines.append(f"planet render{' --validation' if validation else ''}: " + ", ".join(r["file"] for r in renders) +
+             (f"; FAILED: {', '.join(failed)}" if failed else ", all written"))
 open(f"{out}/gpu_report.txt", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 EOF
 echo "gpu_report: wrote $out/gpu_report.json and $out/gpu_report.txt" >&2
-exit $((validate_status == 0 ? 0 : 1))
+render_failed=0
+for entry in "${renders[@]}"; do [[ ${entry##*|} == 0 ]] || render_failed=1; done
+exit $((validate_status == 0 && render_failed == 0 ? 0 : 1))
