@@ -96,13 +96,20 @@ real cornerContribution(uint g, real x, real y, real z) {
   PRECISE real t = kKernelRadius2 - x * x - y * y - z * z;
   t = max(t, real(0.0f));
   t = t * t;
-  return t * t * gradientDot(g, x, y, z);
+  // Named and precise, as the results below: `precise` reaches only the operations of the
+  // function that assigns to a precise variable, so an unnamed return value's multiply may be
+  // fused with the caller's add once a driver inlines the call. That would explain why the value
+  // variants were 66-91 % bit-identical on an H200 where the gradient variants, written so, were
+  // all (not yet run there again).
+  PRECISE real contribution = t * t * gradientDot(g, x, y, z);
+  return contribution;
 }
 
 // Any finite point wrapped into [-P/2, P/2]. The clamp only acts where float rounding left a
 // remainder beyond the period (|x| > 2^24 * P).
 real wrapDomain(real x) {
-  return clamp(x - kDomainPeriod * roundEven(x * kInvDomainPeriod), -kDomainPeriod, kDomainPeriod);
+  PRECISE real wrapped = x - kDomainPeriod * roundEven(x * kInvDomainPeriod);
+  return clamp(wrapped, -kDomainPeriod, kDomainPeriod);
 }
 
 vec3 wrapPoint(vec3 p) { return vec3(wrapDomain(p.x), wrapDomain(p.y), wrapDomain(p.z)); }
@@ -185,7 +192,9 @@ real simplexWrapped(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
   PRECISE real n1 = cornerContribution(g.y, d1.x, d1.y, d1.z);
   PRECISE real n2 = cornerContribution(g.z, d2.x, d2.y, d2.z);
   PRECISE real n3 = cornerContribution(g.w, d3.x, d3.y, d3.z);
-  return kNoiseScale * (n0 + n1 + n2 + n3);
+  PRECISE real sum = n0 + n1 + n2 + n3;
+  PRECISE real scaled = kNoiseScale * sum;
+  return scaled;
 }
 
 real simplexNoise(vec3 p, uvec3 shift, uint hashKind, uint seedMix) {
