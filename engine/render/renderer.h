@@ -84,8 +84,8 @@ class Renderer {
   RenderResult render(const CameraPose& camera, const SunPose& sun, double timeS = 0.0, bool readHdr = false);
   // Whether render() and renderScene() read the tonemapped frame back into RenderResult::image
   // (default: yes). A benchmark turns it off, so that its frame times are the frame's, as in the
-  // viewer, and not a copy to the host with its staging buffer (on an H200 at 1080p about half
-  // the wall-clock frame); the image is then left empty.
+  // viewer, without a copy to the host through a staging buffer (on an H200 the wall-clock frame
+  // at 1080p was twice the GPU span, that copy part of the difference); the image is then empty.
   void setReadImage(bool read) { readImage_ = read; }
 
   // The two halves of render(), for a caller that records into its own command buffer (the
