@@ -15,24 +15,27 @@ namespace {
 
 // Every input of the creation but the layout, for the context's pipeline store: a field of
 // GraphicsPipelineDesc missing here would hand out a pipeline made with another value of it. The
-// size check catches most additions (not one that fits in the padding after the last flag).
-static_assert(sizeof(GraphicsPipelineDesc) == 112,
-              "GraphicsPipelineDesc changed: keep the pipeline store's key below in step with its fields");
+// structured binding names every field, so adding one to the struct stops this from compiling
+// until the key takes it (or says here why not, as for the layout).
 std::string storeKey(const GraphicsPipelineDesc& desc) {
+  const auto& [vertexSpirv, fragmentSpirv, vertexSpecialization, fragmentSpecialization, layout, colorFormat,
+               depthFormat, topology, polygonMode, cullMode, frontFace, depthTest, depthWrite, depthCompare,
+               alphaBlend, premultipliedAlpha, additiveBlend] = desc;
+  // The layout goes to the store beside the key, which looks up its definition (PipelineStore::get).
+  static_cast<void>(layout);
   std::string key = "graphics";
-  appendSpirvKey(key, desc.vertexSpirv);
-  appendSpirvKey(key, desc.fragmentSpirv);
-  appendKeySpan(key, desc.vertexSpecialization);
-  appendKeySpan(key, desc.fragmentSpecialization);
-  appendKey(key, desc.colorFormat);
-  appendKey(key, desc.depthFormat);
-  appendKey(key, desc.topology);
-  appendKey(key, desc.polygonMode);
-  appendKey(key, desc.cullMode);
-  appendKey(key, desc.frontFace);
-  appendKey(key, desc.depthCompare);
-  const uint8_t flags[] = {desc.depthTest, desc.depthWrite, desc.alphaBlend, desc.premultipliedAlpha,
-                           desc.additiveBlend};
+  appendSpirvKey(key, vertexSpirv);
+  appendSpirvKey(key, fragmentSpirv);
+  appendKeySpan(key, vertexSpecialization);
+  appendKeySpan(key, fragmentSpecialization);
+  appendKey(key, colorFormat);
+  appendKey(key, depthFormat);
+  appendKey(key, topology);
+  appendKey(key, polygonMode);
+  appendKey(key, cullMode);
+  appendKey(key, frontFace);
+  appendKey(key, depthCompare);
+  const uint8_t flags[] = {depthTest, depthWrite, alphaBlend, premultipliedAlpha, additiveBlend};
   appendKey(key, flags);
   return key;
 }
