@@ -62,10 +62,11 @@ echo "gpu_report: planet bench --compare ${bench_args[*]}" >&2
 "$planet" bench --compare "${bench_args[@]}" --json "$work/frames.json" > "$work/frames.txt"
 
 # Three views: Earth from 20,000 km, land from 1.5 km, the ground at sunset looking at the sun
-# (the camera is raised to 2 m above the ground there).
+# (about 2 m above the ground there, which lies at 494 m).
 render_flags=()
 [[ ${GPU_REPORT_VALIDATION:-0} == 1 ]] && render_flags=(--validation)
 renders=()
+render_failed=0
 for view in "orbit|20,-30,2e7,0,-90|135,35" "land_1500m|33.82,-89.95,1500,60,-8|135,35" \
             "ground_sunset|33.82,-89.95,496,240,3|240,2"; do
   IFS='|' read -r name camera sun <<< "$view"
@@ -73,7 +74,11 @@ for view in "orbit|20,-30,2e7,0,-90|135,35" "land_1500m|33.82,-89.95,1500,60,-8|
   status=0
   "$planet" "${render_flags[@]}" render --camera "$camera" --sun "$sun" "${render_args[@]}" --out "$out/$name.png" \
     > "$work/render_$name.txt" 2>&1 || status=$?
-  [[ $status -eq 0 ]] || { echo "gpu_report: the $name render failed (exit $status):" >&2; cat "$work/render_$name.txt" >&2; }
+  if [[ $status -ne 0 ]]; then
+    render_failed=1
+    echo "gpu_report: the $name render failed (exit $status):" >&2
+    cat "$work/render_$name.txt" >&2
+  fi
   renders+=("$name|$camera|$sun|$status")
 done
 
@@ -122,6 +127,4 @@ open(f"{out}/gpu_report.txt", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 EOF
 echo "gpu_report: wrote $out/gpu_report.json and $out/gpu_report.txt" >&2
-render_failed=0
-for entry in "${renders[@]}"; do [[ ${entry##*|} == 0 ]] || render_failed=1; done
 exit $((validate_status == 0 && render_failed == 0 ? 0 : 1))
