@@ -12,7 +12,7 @@
 
 layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 
-layout(std430, set = 0, binding = kSkyTableBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
+#include "sky_uniforms.glsl"
 layout(set = 0, binding = kSkyTableBindingTransmittance) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = kSkyTableBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
 layout(set = 0, binding = kSkyTableBindingAerialLight, rgba16f) uniform writeonly image3D aerialLight;

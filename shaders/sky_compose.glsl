@@ -11,9 +11,8 @@
 
 layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 
-// A storage buffer, not a uniform buffer (why: engine/render/sky_pass.cpp, kComposeBindings).
-// SkyUniforms has only vec4 and mat4 members, so std430 lays it out as std140 would.
-layout(std430, set = 0, binding = kSkyBindingUniforms) readonly buffer Uniforms { SkyUniforms sky; };
+// SkyUniforms has only vec4 and mat4 members, so std140 lays it out as C++ does.
+#include "sky_uniforms.glsl"
 layout(set = 0, binding = kSkyBindingColor, rgba16f) uniform image2D color;
 layout(set = 0, binding = kSkyBindingDepth) uniform sampler2D depthBuffer;
 layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmittanceTable;

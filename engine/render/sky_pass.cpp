@@ -23,13 +23,12 @@
 namespace planet {
 namespace {
 
-// The compose pass reads its per-frame values from a storage buffer, not a uniform buffer:
-// lavapipe (Mesa 22.3) folds uniform-buffer values that steer branches and loops into the
-// shader, compiling a new variant at every dispatch whose values changed and never freeing the
-// old one (+1 MB of process memory and a shader-cache lookup per frame, measured; the
-// recompile costs ~400 ms when the shader cache is off). Storage buffers are not folded.
+// Both sets' binding 0 is the per-frame values, a uniform buffer that the shaders reach through
+// an array of one (why: shaders/sky_uniforms.glsl).
+static_assert(gpu::kSkyBindingUniforms == 0 && gpu::kSkyTableBindingUniforms == 0,
+              "shaders/sky_uniforms.glsl declares SkyUniforms at binding 0 of every sky pass");
 constexpr VkDescriptorType kComposeBindings[] = {
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // per-frame values (SkyUniforms)
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // per-frame values (SkyUniforms)
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // HDR colour
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // depth
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
@@ -44,7 +43,7 @@ constexpr VkDescriptorType kComposeBindings[] = {
 
 // The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
 constexpr VkDescriptorType kTableBindings[] = {
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // per-frame values (SkyUniforms)
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // per-frame values (SkyUniforms)
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // multiple scattering
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // sky view
@@ -92,7 +91,7 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   specialization_[0][0] = specialization_[1][0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
-    uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                           vk::MemoryUsage::Upload)};
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = info.minFilter = VK_FILTER_NEAREST;
@@ -117,7 +116,7 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     VkDescriptorSet set = sets_[slot] = vk::allocateSet(context, pool_.get(), setLayout_.get());
-    vk::writeBufferDescriptor(context, set, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    vk::writeBufferDescriptor(context, set, gpu::kSkyBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                               *uniforms_[slot]);
     vk::writeImageDescriptor(context, set, gpu::kSkyBindingTransmittance, kSampled, tables.transmittanceView(),
                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());
@@ -134,7 +133,7 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                              kGeneral, tables.sampler());
 
     VkDescriptorSet tableSet = tableSets_[slot] = vk::allocateSet(context, tablePool_.get(), tableSetLayout_.get());
-    vk::writeBufferDescriptor(context, tableSet, gpu::kSkyTableBindingUniforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    vk::writeBufferDescriptor(context, tableSet, gpu::kSkyTableBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                               *uniforms_[slot]);
     vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingTransmittance, kSampled,
                              tables.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, tables.sampler());

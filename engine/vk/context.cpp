@@ -225,6 +225,9 @@ void createDevice(Context& context, const ContextOptions& options) {
   vkGetPhysicalDeviceFeatures2(context.physicalDevice, &supported);
   if (!supported13.synchronization2 || !supported13.dynamicRendering)
     throw Error("device '" + context.info.name + "' lacks synchronization2 or dynamicRendering");
+  // The sky passes index an array of uniform buffers (shaders/sky_uniforms.glsl says why).
+  if (!supported.features.shaderUniformBufferArrayDynamicIndexing)
+    throw Error("device '" + context.info.name + "' lacks shaderUniformBufferArrayDynamicIndexing");
 
   VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   enable13.synchronization2 = VK_TRUE;
@@ -240,6 +243,7 @@ void createDevice(Context& context, const ContextOptions& options) {
   enable.features.fillModeNonSolid = supported.features.fillModeNonSolid;  // wireframe debug view
   enable.features.shaderFloat64 = supported.features.shaderFloat64;
   enable.features.samplerAnisotropy = supported.features.samplerAnisotropy;
+  enable.features.shaderUniformBufferArrayDynamicIndexing = VK_TRUE;
   enable.features.largePoints = supported.features.largePoints;  // star sprites wider than 1 px (render/star_pass.h)
 
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};

@@ -17,7 +17,7 @@ GPU_CONST uint kTransmittanceSteps = 500u;  // midpoint steps of the optical-dep
 GPU_CONST uint kSkyWorkgroupSize = 8u;      // 8×8 invocations per group (compose, tables)
 
 // Bindings of the sky compose pass (set 0).
-GPU_CONST uint kSkyBindingUniforms = 0u;             // uniform SkyUniforms
+GPU_CONST uint kSkyBindingUniforms = 0u;             // uniform SkyUniforms (sky_uniforms.glsl)
 GPU_CONST uint kSkyBindingColor = 1u;                // image2D rgba16f: the HDR frame, read and written in place
 GPU_CONST uint kSkyBindingDepth = 2u;                // sampler2D: the frame's reversed-Z depth
 GPU_CONST uint kSkyBindingTransmittance = 3u;        // sampler2D: the transmittance table
@@ -47,7 +47,7 @@ GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic 
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
 // Bindings of the per-frame table builds (set 0).
-GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (storage buffer)
+GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (uniform buffer: sky_uniforms.glsl)
 GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D
 GPU_CONST uint kSkyTableBindingMultipleScattering = 2u;   // sampler2D
 GPU_CONST uint kSkyTableBindingSkyView = 3u;              // image2D rgba16f, written
