@@ -14,6 +14,7 @@
 
 #include "terrain_layer_specialization.glsl"
 #define TERRAIN_SPECIALIZED_LAYERS
+#define TERRAIN_TABLE_BLOCK gl_WorkGroupID.z  // 0: the dispatch is one-dimensional
 #include "terrain_vertex_surface.glsl"
 
 layout(local_size_x = kTerrainComputeWorkgroupSize) in;

@@ -12,6 +12,7 @@
 
 #include "terrain_layer_specialization.glsl"
 #define TERRAIN_SPECIALIZED_LAYERS
+#define TERRAIN_TABLE_BLOCK gl_InstanceIndex  // 0: one instance, the first
 #include "terrain_vertex_surface.glsl"
 
 // After the layers' constants (shared/terrain_params.h): 1 draws the sea, 0 the ground.

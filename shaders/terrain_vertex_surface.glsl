@@ -4,8 +4,8 @@
 // terrain_heights.comp (HeightSource::Compute, the design) and terrain_noise.vert
 // (HeightSource::VertexShader, seed 002's design, kept for `planet bench --compare`).
 // The includer declares nothing of its own before this file (but the specialization constants
-// of terrain_layer_specialization.glsl, see surfaceHeight); `push` is the frame's
-// TerrainComputePush in both.
+// of terrain_layer_specialization.glsl, see surfaceHeight, and TERRAIN_TABLE_BLOCK, see the
+// octave tables); `push` is the frame's TerrainComputePush in both.
 #ifndef PLANET_TERRAIN_VERTEX_SURFACE_GLSL
 #define PLANET_TERRAIN_VERTEX_SURFACE_GLSL
 
@@ -14,8 +14,19 @@
 layout(push_constant) uniform Push { TerrainComputePush push; };
 
 layout(std430, set = 0, binding = kRenderBindingLayers) readonly buffer Layers { TerrainLayer layers[]; };
-layout(std430, set = 0, binding = kRenderBindingRemainders) readonly buffer Remainders { vec4 remainders[]; };
-layout(std430, set = 0, binding = kRenderBindingShifts) readonly buffer Shifts { uvec4 shifts[]; };
+// The rebased octave tables, read at every octave of every layer: uniform buffers, each reached
+// through an array of one at TERRAIN_TABLE_BLOCK, which the includer defines as 0 in a way the
+// compiler cannot fold (gl_WorkGroupID.z of a one-dimensional dispatch, gl_InstanceIndex of a
+// draw of one instance). On lavapipe a storage buffer read inside a loop costs a bounds-checked
+// scalar load per lane and component (measured: 14 of the height pass's 35 ms at 640×360), a
+// uniform buffer's a load per lane in registers; a constant block index would let lavapipe
+// compile the tables, which change every frame, into the shader (sky_uniforms.glsl says more).
+layout(std140, set = 0, binding = kRenderBindingRemainders) uniform Remainders {
+  vec4 values[kTerrainMaxLayers * kNoiseMaxOctaves];
+} remainderTables[1];
+layout(std140, set = 0, binding = kRenderBindingShifts) uniform Shifts {
+  uvec4 values[kTerrainMaxLayers * kNoiseMaxOctaves];
+} shiftTables[1];
 layout(std430, set = 0, binding = kRenderBindingPermutations) readonly buffer Permutations { uint permutations[]; };
 layout(std430, set = 0, binding = kRenderBindingBudgets) readonly buffer Budgets { RingBudget budgets[]; };
 
@@ -27,8 +38,8 @@ uint gPermutationBase = 0u;
 // evaluated with no octaves (on lavapipe an octave loop ends as soon as all its lanes are done).
 bool gEvaluateNoise = true;
 #define PERM(i) permutations[gPermutationBase + (i)]
-#define OCTAVE_REMAINDER(layer, i) remainders[(layer) * kNoiseMaxOctaves + (i)]
-#define OCTAVE_SHIFT(layer, i) shifts[(layer) * kNoiseMaxOctaves + (i)]
+#define OCTAVE_REMAINDER(layer, i) remainderTables[TERRAIN_TABLE_BLOCK].values[(layer) * kNoiseMaxOctaves + (i)]
+#define OCTAVE_SHIFT(layer, i) shiftTables[TERRAIN_TABLE_BLOCK].values[(layer) * kNoiseMaxOctaves + (i)]
 #include "common/noise.glsl"
 
 // Sea-sphere point of a mesh vertex minus the anchor, local frame: R (sinθ cosφ, sinθ sinφ,

@@ -52,8 +52,8 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // normals
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // attributes
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // layers
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // remainders
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // shifts
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // remainders (why uniform: shaders/terrain_vertex_surface.glsl)
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // shifts
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // permutations
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // budgets
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // patches
@@ -195,10 +195,10 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   attributes_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
   // Per-frame data the CPU writes: host-visible, one copy per frame slot.
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
-    remainders_[slot] = {context,
-                         vk::createBuffer(context, kTableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload)};
-    shifts_[slot] = {context,
-                     vk::createBuffer(context, kTableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload)};
+    remainders_[slot] = {context, vk::createBuffer(context, kTableRows * sizeof(glm::vec4),
+                                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
+    shifts_[slot] = {context, vk::createBuffer(context, kTableRows * sizeof(glm::uvec4),
+                                               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
     uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
                                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
     // Room for every band and the fan, and for a chunk per sector and per workgroup of every ring.
