@@ -5,6 +5,14 @@
 #include "shared/render_params.h"
 
 layout(std140, set = 0, binding = kRenderBindingFrame) uniform Frame { FrameUniforms frame; };
+// FrameUniforms again, as RGBA32F texels, for its arrays read at an index that is not a
+// compile-time constant (a loop's counter, a pixel's patch level or table entry): lavapipe
+// (Mesa 22.3) reads a uniform buffer at a variable offset lane by lane, a bounds-checked scalar
+// load per lane and component through memory, and a texel fetch as one vector load per lane. At
+// constant indices `frame` is one scalar load for all lanes and stays the way to read it.
+layout(set = 0, binding = kRenderBindingFrameTexels) uniform samplerBuffer frameTexels;
+// Element i of the array of FrameUniforms that starts at texel `first` (kFrameTexel*).
+vec4 frameArray(uint first, uint i) { return texelFetch(frameTexels, int(first + i)); }
 
 struct MeshVertex {
   vec4 direction;  // unit direction in the local frame, w = 1

@@ -23,8 +23,8 @@
 
 // The ground noise uses only the fast hash and no rebased walk of noise.glsl.
 #define PERM(i) 0u
-#define OCTAVE_REMAINDER(layer, i) frame.groundOctaves[i]
-#define OCTAVE_SHIFT(layer, i) uvec4(frame.groundShifts[i])
+#define OCTAVE_REMAINDER(layer, i) frameArray(kFrameTexelGroundOctaves, i)
+#define OCTAVE_SHIFT(layer, i) uvec4(frameArray(kFrameTexelGroundShifts, i))
 #define NOISE_NO_CRATERS
 #include "common/noise.glsl"
 
@@ -46,8 +46,8 @@ float octaveFade(float wavelengthM, float footprintM) {
 
 // Octave i's lattice point and shift at `offsetPlanet` (planet frame, metres from the anchor).
 vec3 groundOctavePoint(uint i, vec3 offsetPlanet, out uvec3 shift) {
-  vec4 r = frame.groundOctaves[i];
-  shift = uvec3(frame.groundShifts[i].xyz);
+  vec4 r = frameArray(kFrameTexelGroundOctaves, i);
+  shift = uvec3(frameArray(kFrameTexelGroundShifts, i).xyz);
   return r.xyz + offsetPlanet * r.w;
 }
 
@@ -59,7 +59,7 @@ float groundBiomeNoise(vec3 offsetPlanet, float footprintM) {
   float sum = 0.0f;
   float weight = 0.0625f;
   for (uint i = 0u; i < kGroundBiomeOctavesGpu; ++i) {
-    float fade = octaveFade(1.0f / frame.groundOctaves[i].w, footprintM);
+    float fade = octaveFade(1.0f / frameArray(kFrameTexelGroundOctaves, i).w, footprintM);
     if (fade <= 0.0f) break;
     uvec3 shift;
     vec3 q = groundOctavePoint(i, offsetPlanet, shift);
@@ -89,7 +89,7 @@ GroundDetail groundDetail(vec3 offsetPlanet, float footprintM) {
   d.stones = 0.0f;
   if (!GROUND_DETAIL_POSSIBLE) return d;
   for (uint i = kGroundBiomeOctavesGpu; i < kGroundOctavesGpu; ++i) {
-    float frequency = frame.groundOctaves[i].w;
+    float frequency = frameArray(kFrameTexelGroundOctaves, i).w;
     float fade = octaveFade(1.0f / frequency, footprintM);
     if (fade <= 0.0f) break;
     uvec3 shift;

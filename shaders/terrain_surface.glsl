@@ -45,16 +45,16 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
     uint first = uint(lod);
     float fraction = lod - float(first);
     for (uint j = first; j < levels && remaining > 0.0f; ++j) {
-      vec4 level = frame.patchLevels[j];
+      vec4 level = frameArray(kFrameTexelPatchLevels, j);
       vec2 uv = (face + level.zw) * level.y;
-      vec4 bounds = frame.patchBounds[j];  // what the layer holds (a level built over frames)
+      vec4 bounds = frameArray(kFrameTexelPatchBounds, j);  // what the layer holds (a level built over frames)
       float edge = min(min(uv.x - bounds.x, bounds.z - uv.x), min(uv.y - bounds.y, bounds.w - uv.y));
       // A level whose build waits for a later frame has layer −1 (PatchTextures::plan).
       float weight = level.x < 0.0f ? 0.0f : clamp((edge - 0.02f) / 0.08f, 0.0f, 1.0f);
       if (j == first) weight *= 1.0f - fraction;
       if (weight <= 0.0f) continue;
       // Toroidal storage: the level's texel (0, 0) sits at its wrap offset; the sampler repeats.
-      vec4 wrap = frame.patchWrap[j >> 1u];
+      vec4 wrap = frameArray(kFrameTexelPatchWrap, j >> 1u);
       vec2 stored = uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw);
       vec4 texel = textureLod(patches, vec3(stored, level.x), 0.0f);
       accumulatedNormal += remaining * weight * (mat3(frame.planetToLocal) * texel.xyz);
@@ -90,7 +90,7 @@ vec3 skyIrradianceAt(float muS) {
   float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * float(kSkyIrradianceSamplesGpu - 1u);
   uint i = min(uint(x), kSkyIrradianceSamplesGpu - 2u);
   float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
-  return night * mix(frame.skyIrradiance[i].rgb, frame.skyIrradiance[i + 1u].rgb, x - float(i));
+  return night * mix(frameArray(kFrameTexelSkyIrradiance, i).rgb, frameArray(kFrameTexelSkyIrradiance, i + 1u).rgb, x - float(i));
 }
 
 // Irradiance from the sun through the air at altitude h with sphere normal `up` (zero on the

@@ -146,11 +146,11 @@ bool patchTexelAt(vec2 face, float spacingM, out vec4 texel) {
   // sample without aliasing: the noise, band-limited to the ring, takes over.
   bool fine = coarser < float(levels);
   uint j = uint(min(coarser, float(levels - 1u)));
-  vec4 level = frame.patchLevels[j];
+  vec4 level = frameArray(kFrameTexelPatchLevels, j);
   vec2 uv = (face + level.zw) * level.y;
-  vec4 bounds = frame.patchBounds[j] + vec4(1.0f, 1.0f, -1.0f, -1.0f) / resolution;
+  vec4 bounds = frameArray(kFrameTexelPatchBounds, j) + vec4(1.0f, 1.0f, -1.0f, -1.0f) / resolution;
   bool held = fine && level.x >= 0.0f && all(greaterThanEqual(uv, bounds.xy)) && all(lessThanEqual(uv, bounds.zw));
-  vec4 wrap = frame.patchWrap[j >> 1u];
+  vec4 wrap = frameArray(kFrameTexelPatchWrap, j >> 1u);
   vec2 stored = uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw);
   texel = textureLod(patches, vec3(stored, max(level.x, 0.0f)), 0.0f);
   return held;

@@ -6,9 +6,11 @@
 
 #include "terrain_common.glsl"
 
-layout(std430, set = 0, binding = kRenderBindingSurface) readonly buffer Surface { vec4 surface[]; };
-layout(std430, set = 0, binding = kRenderBindingNormals) readonly buffer Normals { vec4 normals[]; };
-layout(std430, set = 0, binding = kRenderBindingAttributes) readonly buffer Attributes { vec4 attributes[]; };
+// The vertex's values, from the buffers the height pass wrote (TerrainPass::bindDrawState).
+layout(location = 0) in vec4 inSurface;     // xyz: sea-sphere point − anchor (local), w: height (m)
+layout(location = 1) in vec4 inDirection;   // the mesh vertex's unit direction (local), w = 1
+layout(location = 2) in vec4 inNormal;      // xyz: unit normal (local)
+layout(location = 3) in vec4 inAttributes;  // face Δa, Δb, band noise, sin(latitude)
 
 layout(location = 0) out vec3 outNormal;      // terrain normal (local frame), for the patch fallback
 layout(location = 1) out vec3 outUp;          // sphere normal (local frame)
@@ -17,14 +19,13 @@ layout(location = 3) out float outHeight;     // terrain height at the vertex (m
 layout(location = 4) out vec3 outToCamera;    // local frame, metres
 
 void main() {
-  uint index = uint(gl_VertexIndex);
-  vec4 s = surface[index];
-  vec3 up = mesh[index].direction.xyz;
+  vec4 s = inSurface;
+  vec3 up = inDirection.xyz;
   vec3 position = s.xyz + frame.planet.x * up - vec3(0.0f, 0.0f, frame.camera.x);
   gl_Position = frame.viewProjection * vec4(position * (1.0f - kWaterTowardCamera), 1.0f);
-  outNormal = normals[index].xyz;
+  outNormal = inNormal.xyz;
   outUp = up;
-  outAttributes = attributes[index];
+  outAttributes = inAttributes;
   outHeight = s.w;
   outToCamera = -position;
 }

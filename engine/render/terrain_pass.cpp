@@ -1,6 +1,7 @@
 #include "render/terrain_pass.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -60,8 +61,27 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // relief
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // chunks
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,    // frame texels (the frame's uniforms again)
 };
+// Where the shaders find FrameUniforms's indexed arrays among its texels.
+constexpr bool frameTexelAt(size_t offset, uint32_t texel) { return offset == texel * sizeof(glm::vec4); }
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, patchLevels), gpu::kFrameTexelPatchLevels));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, patchWrap), gpu::kFrameTexelPatchWrap));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, patchBounds), gpu::kFrameTexelPatchBounds));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, skyIrradiance), gpu::kFrameTexelSkyIrradiance));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, waves), gpu::kFrameTexelWaves));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, groundOctaves), gpu::kFrameTexelGroundOctaves));
+static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, groundShifts), gpu::kFrameTexelGroundShifts));
+static_assert(sizeof(gpu::FrameUniforms) % sizeof(glm::vec4) == 0, "the texel view covers the whole struct");
 constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::kNoiseMaxOctaves;
+
+// The draws' vertex buffers (terrain.vert, water.vert), bound in this order by bindDrawState: the
+// surface, the mesh vertex's direction, the normal, the attributes. The draws take them as vertex
+// input, not from the storage buffers the compute pass writes: lavapipe's vertex fetch loads each
+// vec4 as one vector, where a storage buffer read at gl_VertexIndex is a bounds-checked scalar
+// load per lane and component (with the frame texels of terrain_common.glsl: terrain pass 53 →
+// 43 ms, water 8.7 → 5.2 ms, best of four runs on a static view at 640×360; docs/benchmarks.md).
+constexpr uint32_t kVertexStrides[] = {sizeof(glm::vec4), sizeof(ClipmapVertex), sizeof(glm::vec4), sizeof(glm::vec4)};
 
 glm::vec4 toVec4(const glm::vec3& v, float w = 0.0f) { return glm::vec4(v, w); }
 
@@ -166,10 +186,11 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   relief_ = std::make_unique<ReliefCube>(context, *data_, settings.relief ? settings.reliefSize : kReliefStandInSize);
 
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const VkBufferUsageFlags vertexStorage = storage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
   const VkDeviceSize vertexCount = mesh_.vertexCount();
   // Static data, uploaded once (the mesh is never rebuilt per frame).
-  meshVertices_ = {
-      context, vk::createBuffer(context, vertexCount * sizeof(ClipmapVertex), storage, vk::MemoryUsage::DeviceLocal)};
+  meshVertices_ = {context, vk::createBuffer(context, vertexCount * sizeof(ClipmapVertex), vertexStorage,
+                                             vk::MemoryUsage::DeviceLocal)};
   vk::uploadBuffer(context, *meshVertices_, mesh_.vertices.data(), vertexCount * sizeof(ClipmapVertex));
   const uint32_t rings = mesh_.ringCount();
   const uint32_t n = settings.mesh.numPhi;
@@ -190,9 +211,9 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   vk::uploadBuffer(context, *budgets_, budgets.data(), budgets.size() * sizeof(gpu::RingBudget));
 
   const VkDeviceSize vertexBytes = vertexCount * sizeof(glm::vec4);
-  surface_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
-  normals_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
-  attributes_ = {context, vk::createBuffer(context, vertexBytes, storage, vk::MemoryUsage::DeviceLocal)};
+  surface_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
+  normals_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
+  attributes_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
   // Per-frame data the CPU writes: host-visible, one copy per frame slot.
   for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
     remainders_[slot] = {context, vk::createBuffer(context, kTableRows * sizeof(glm::vec4),
@@ -200,7 +221,10 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     shifts_[slot] = {context, vk::createBuffer(context, kTableRows * sizeof(glm::uvec4),
                                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
     uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
-                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
+                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                                                     VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                                 vk::MemoryUsage::Upload)};
+    uniformTexels_[slot] = {context, vk::createBufferView(context, *uniforms_[slot], VK_FORMAT_R32G32B32A32_SFLOAT)};
     // Room for every band and the fan, and for a chunk per sector and per workgroup of every ring.
     const VkDeviceSize maxIndices = VkDeviceSize(6) * n * (rings - 1) + VkDeviceSize(3) * n;
     const VkDeviceSize maxChunks =
@@ -226,6 +250,7 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
       vk::writeBufferDescriptor(context, set, b, kBindingTypes[b], *buffers[b]);
     vk::writeBufferDescriptor(context, set, gpu::kRenderBindingChunks, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                               *chunks_[slot]);
+    vk::writeTexelBufferDescriptor(context, set, gpu::kRenderBindingFrameTexels, uniformTexels_[slot].get());
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingPatches, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              patches_->image().view, VK_IMAGE_LAYOUT_GENERAL, patches_->sampler());
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingTransmittance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
@@ -255,9 +280,11 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     if (noiseDrawLayout_.get()) {
       const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
       water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat,
-                                           settings.eclipses, noiseVertexSpirv(), specialization);
+                                           settings.eclipses, std::span<const uint32_t>(), noiseVertexSpirv(),
+                                           specialization);
     } else {
-      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat, settings.eclipses);
+      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat, settings.eclipses,
+                                           kVertexStrides);
     }
   }
 }
@@ -293,9 +320,11 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
                                      !wireframe && shading.ringShadow ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
+  desc.vertexStrides = kVertexStrides;
   std::vector<uint32_t> vertexSpecialization;
   if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader
     vertexSpecialization = noiseVertexSpecialization(false);
+    desc.vertexStrides = {};
     desc.vertexSpirv = noiseVertexSpirv();
     desc.vertexSpecialization = vertexSpecialization;
     desc.layout = noiseDrawLayout_.get();
@@ -662,8 +691,9 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     frame_.verticesEvaluated = culledVertices_ * (frame_.waterDrawn ? 2 : 1);
   } else if (frame_.heightsComputed) {
     if (timer) timer->begin(cmd, "heights");
-    // The previous frame's vertex shader read these buffers; the rewrite must wait for it.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
+    // The previous frame's draws read these buffers; the rewrite must wait for them.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
     const gpu::TerrainComputePush push = heightPush();
@@ -681,11 +711,11 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
       vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
       vkCmdDispatch(cmd, chunkCount_, 1, 1);
     }
-    // The vertex shader reads positions, normals and attributes.
+    // The draws read positions, normals and attributes as vertex input.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+                      VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
     if (timer) timer->end(cmd);
     computed_ = pending_;
   }
@@ -703,6 +733,12 @@ void TerrainPass::bindDrawState(VkCommandBuffer cmd) const {
     vkCmdPushConstants(cmd, drawLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
   }
   vkCmdBindIndexBuffer(cmd, drawIndices_[slot_]->buffer, 0, VK_INDEX_TYPE_UINT32);
+  if (!noiseDrawLayout_.get()) {
+    const VkBuffer vertexBuffers[] = {surface_->buffer, meshVertices_->buffer, normals_->buffer, attributes_->buffer};
+    const VkDeviceSize offsets[std::size(vertexBuffers)] = {};
+    static_assert(std::size(vertexBuffers) == std::size(kVertexStrides));
+    vkCmdBindVertexBuffers(cmd, 0, uint32_t(std::size(vertexBuffers)), vertexBuffers, offsets);
+  }
 }
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {

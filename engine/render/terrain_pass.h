@@ -333,6 +333,7 @@ class TerrainPass {
   vk::Owned<vk::Buffer> remainders_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> shifts_[vk::kFramesInFlight];
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];
+  vk::Owned<VkBufferView> uniformTexels_[vk::kFramesInFlight];  // the same, as texels (terrain_common.glsl)
   // The frame's culled mesh (clipmap_culling.h): its triangle list, and its vertices as chunks
   // (uvec2: first vertex, count) for the height pass.
   vk::Owned<vk::Buffer> drawIndices_[vk::kFramesInFlight];

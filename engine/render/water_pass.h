@@ -35,8 +35,11 @@ class WaterPass {
   // depthFormat. The vertices come from water.vert, or from `vertexSpirv` with its
   // specialization constants (the vertex-shader height source: terrain_noise.vert).
   // `eclipses` false leaves the eclipse code out of the fragment shader (no other body).
+  // `vertexStrides`: the terrain's vertex buffers (GraphicsPipelineDesc), for water.vert; with
+  // `vertexSpirv` (seed 002's design) none.
   WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat, bool eclipses,
-            std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> vertexSpecialization = {});
+            std::span<const uint32_t> vertexStrides, std::span<const uint32_t> vertexSpirv = {},
+            std::span<const uint32_t> vertexSpecialization = {});
 
   // Records the draw of the ground's triangles (the first `indexCount` indices of the bound index
   // buffer) with the terrain's descriptor set and index buffer bound (it binds its pipeline).

@@ -24,6 +24,17 @@ void checkFrameSlot(uint32_t slot) {
     throw Error("frame slot " + std::to_string(slot) + " is outside 0.." + std::to_string(kFramesInFlight - 1));
 }
 
+VkBufferView createBufferView(Context& context, const Buffer& buffer, VkFormat format) {
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer.buffer;
+  info.format = format;
+  info.offset = 0;
+  info.range = VK_WHOLE_SIZE;
+  VkBufferView view = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateBufferView(context.device, &info, nullptr, &view));
+  return view;
+}
+
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory) {
   if (size == 0) throw Error("cannot create a buffer of 0 bytes");
   // Owned until complete: a failed allocation destroys the VkBuffer.

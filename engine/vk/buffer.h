@@ -30,6 +30,10 @@ struct Buffer {
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory);
 void destroyBuffer(Context& context, Buffer& buffer);
 
+// A view of the whole buffer as texels of `format`, for a uniform or storage texel buffer
+// descriptor (the buffer made with the matching usage bit).
+VkBufferView createBufferView(Context& context, const Buffer& buffer, VkFormat format);
+
 // Copies `bytes` from host memory into the buffer at `offset`: directly when the buffer is
 // mapped, else through a temporary staging buffer and a transfer (blocking).
 void uploadBuffer(Context& context, Buffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);

@@ -18,9 +18,9 @@ namespace {
 // structured binding names every field, so adding one to the struct stops this from compiling
 // until the key takes it (or says here why not, as for the layout).
 std::string storeKey(const GraphicsPipelineDesc& desc) {
-  const auto& [vertexSpirv, fragmentSpirv, vertexSpecialization, fragmentSpecialization, layout, colorFormat,
-               depthFormat, topology, polygonMode, cullMode, frontFace, depthTest, depthWrite, depthCompare,
-               alphaBlend, premultipliedAlpha, additiveBlend] = desc;
+  const auto& [vertexSpirv, fragmentSpirv, vertexSpecialization, fragmentSpecialization, vertexStrides, layout,
+               colorFormat, depthFormat, topology, polygonMode, cullMode, frontFace, depthTest, depthWrite,
+               depthCompare, alphaBlend, premultipliedAlpha, additiveBlend] = desc;
   // The layout goes to the store beside the key, which looks up its definition (PipelineStore::get).
   static_cast<void>(layout);
   std::string key = "graphics";
@@ -28,6 +28,7 @@ std::string storeKey(const GraphicsPipelineDesc& desc) {
   appendSpirvKey(key, fragmentSpirv);
   appendKeySpan(key, vertexSpecialization);
   appendKeySpan(key, fragmentSpecialization);
+  appendKeySpan(key, vertexStrides);
   appendKey(key, colorFormat);
   appendKey(key, depthFormat);
   appendKey(key, topology);
@@ -66,7 +67,17 @@ VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
   if (!desc.vertexSpecialization.empty()) stages[0].pSpecializationInfo = &vertexSpecialization;
   if (!desc.fragmentSpecialization.empty()) stages[1].pSpecializationInfo = &fragmentSpecialization;
 
+  std::vector<VkVertexInputBindingDescription> vertexBindings(desc.vertexStrides.size());
+  std::vector<VkVertexInputAttributeDescription> vertexAttributes(desc.vertexStrides.size());
+  for (uint32_t i = 0; i < desc.vertexStrides.size(); ++i) {
+    vertexBindings[i] = {i, desc.vertexStrides[i], VK_VERTEX_INPUT_RATE_VERTEX};
+    vertexAttributes[i] = {i, i, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
+  }
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertexInput.vertexBindingDescriptionCount = uint32_t(vertexBindings.size());
+  vertexInput.pVertexBindingDescriptions = vertexBindings.data();
+  vertexInput.vertexAttributeDescriptionCount = uint32_t(vertexAttributes.size());
+  vertexInput.pVertexAttributeDescriptions = vertexAttributes.data();
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = desc.topology;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};

@@ -18,6 +18,9 @@ struct GraphicsPipelineDesc {
   // Each stage's specialization constants: value i goes to constant_id i of that stage.
   std::span<const uint32_t> vertexSpecialization;
   std::span<const uint32_t> fragmentSpecialization;
+  // Vertex buffers: binding i feeds the vertex shader's input at location i, an RGBA32F vec4 at
+  // the start of each element, elements vertexStrides[i] bytes apart (empty: no vertex input).
+  std::span<const uint32_t> vertexStrides;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment

@@ -46,6 +46,7 @@ void destroyOwned(Context& context, VkDescriptorSetLayout& layout) {
 }
 void destroyOwned(Context& context, VkDescriptorPool& pool) { destroyDeviceHandle(context, pool, vkDestroyDescriptorPool); }
 void destroyOwned(Context& context, VkSampler& sampler) { destroyDeviceHandle(context, sampler, vkDestroySampler); }
+void destroyOwned(Context& context, VkBufferView& view) { destroyDeviceHandle(context, view, vkDestroyBufferView); }
 void destroyOwned(Context& context, VkShaderModule& module) { destroyDeviceHandle(context, module, vkDestroyShaderModule); }
 void destroyOwned(Context& context, VkQueryPool& pool) { destroyDeviceHandle(context, pool, vkDestroyQueryPool); }
 void destroyOwned(Context& context, VkCommandPool& pool) { destroyDeviceHandle(context, pool, vkDestroyCommandPool); }

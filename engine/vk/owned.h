@@ -29,6 +29,7 @@ void destroyOwned(Context& context, VkDescriptorSetLayout& layout);
 // Descriptor sets allocated from the pool go with it.
 void destroyOwned(Context& context, VkDescriptorPool& pool);
 void destroyOwned(Context& context, VkSampler& sampler);
+void destroyOwned(Context& context, VkBufferView& view);
 void destroyOwned(Context& context, VkShaderModule& module);
 void destroyOwned(Context& context, VkQueryPool& pool);
 // Command buffers allocated from the pool go with it.

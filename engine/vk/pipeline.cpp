@@ -168,6 +168,16 @@ void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t bindi
   vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
 }
 
+void writeTexelBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkBufferView view) {
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  write.pTexelBufferView = &view;
+  vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
+}
+
 void writeImageDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                           VkImageView view, VkImageLayout layout, VkSampler sampler) {
   VkDescriptorImageInfo info{sampler, view, layout};

@@ -61,6 +61,8 @@ VkDescriptorSet allocateSet(Context& context, VkDescriptorPool pool, VkDescripto
 // Points one binding of `set` at a whole buffer (storage or uniform, as `type` says).
 void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                            const Buffer& buffer);
+// Points one binding of `set` (a uniform texel buffer) at a buffer view.
+void writeTexelBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkBufferView view);
 // Points one binding of `set` at an image view (storage image: sampler null; combined image sampler).
 void writeImageDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                           VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);

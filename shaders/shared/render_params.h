@@ -36,7 +36,8 @@ GPU_CONST uint kRenderBindingPatches = 10u;        // sampler2DArray: normal (pl
 GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere's transmittance table
 GPU_CONST uint kRenderBindingRelief = 12u;         // samplerCube: normal (planet frame), height m (relief_params.h)
 GPU_CONST uint kRenderBindingChunks = 13u;         // uvec2[]: the height pass's vertex runs (first vertex, count)
-GPU_CONST uint kRenderBindingCount = 14u;
+GPU_CONST uint kRenderBindingFrameTexels = 14u;    // samplerBuffer: binding 0's FrameUniforms as RGBA32F texels
+GPU_CONST uint kRenderBindingCount = 15u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
@@ -120,6 +121,17 @@ struct FrameUniforms {
   LightsParams lights;
 };
 GPU_ASSERT_SIZE(FrameUniforms, 2304 + 272 + 48)
+
+// The texel (vec4) where each array of FrameUniforms that the shaders index with a variable
+// starts, for reading it through kRenderBindingFrameTexels (why: terrain_common.glsl,
+// frameArray); engine/render/terrain_pass.cpp checks them against the struct.
+GPU_CONST uint kFrameTexelPatchLevels = 28u;
+GPU_CONST uint kFrameTexelPatchWrap = 44u;
+GPU_CONST uint kFrameTexelPatchBounds = 52u;
+GPU_CONST uint kFrameTexelSkyIrradiance = 75u;
+GPU_CONST uint kFrameTexelWaves = 91u;
+GPU_CONST uint kFrameTexelGroundOctaves = 114u;
+GPU_CONST uint kFrameTexelGroundShifts = 122u;
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
