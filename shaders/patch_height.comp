@@ -16,8 +16,12 @@ layout(std430, set = 0, binding = kPatchBindingLevel) readonly buffer Level {
   PatchLevelParams level;
   PatchTile tiles[];
 };
-layout(std430, set = 0, binding = kPatchBindingRemainders) readonly buffer Remainders { vec4 remainders[]; };
-layout(std430, set = 0, binding = kPatchBindingShifts) readonly buffer Shifts { uvec4 shifts[]; };
+// The octave tables, read at every octave: texel buffers, which lavapipe (Mesa 22.3) reads with
+// one vector load per lane, where a storage buffer read inside a loop is a bounds-checked scalar
+// load per lane and component (as the height pass's, terrain_vertex_surface.glsl; the tables of
+// all a level's tiles are too large for a uniform buffer).
+layout(set = 0, binding = kPatchBindingRemainders) uniform samplerBuffer remainders;
+layout(set = 0, binding = kPatchBindingShifts) uniform usamplerBuffer shifts;
 layout(std430, set = 0, binding = kPatchBindingHeights) writeonly buffer Heights { float heights[]; };
 layout(std430, set = 0, binding = kPatchBindingLayers) readonly buffer Layers { TerrainLayer layers[]; };
 layout(std430, set = 0, binding = kPatchBindingPermutations) readonly buffer Permutations { uint permutations[]; };
@@ -26,8 +30,8 @@ layout(std430, set = 0, binding = kPatchBindingPermutations) readonly buffer Per
 uint gPermutationBase = 0u;
 uint gTableBase = 0u;
 #define PERM(i) permutations[gPermutationBase + (i)]
-#define OCTAVE_REMAINDER(layer, i) remainders[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
-#define OCTAVE_SHIFT(layer, i) shifts[gTableBase + (layer) * kNoiseMaxOctaves + (i)]
+#define OCTAVE_REMAINDER(layer, i) texelFetch(remainders, int(gTableBase + (layer) * kNoiseMaxOctaves + (i)))
+#define OCTAVE_SHIFT(layer, i) texelFetch(shifts, int(gTableBase + (layer) * kNoiseMaxOctaves + (i)))
 #include "common/noise.glsl"
 
 // Layer l's noise value at `offset` (sample minus tile anchor, metres), limited to the octaves

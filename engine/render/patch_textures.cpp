@@ -26,8 +26,8 @@ namespace {
 // Set 0 of both passes (shaders/shared/patch_params.h); each pass uses a subset.
 constexpr VkDescriptorType kBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLevel
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingRemainders
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingShifts
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,  // kPatchBindingRemainders (why texels: patch_height.comp)
+    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,  // kPatchBindingShifts
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingHeights
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLayers
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingPermutations
@@ -75,6 +75,9 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
   maxTilesPerSide_ = (tileSize_ - 1 + res + 2 + tileSize_ - 1) / tileSize_;
   const VkDeviceSize tiles = VkDeviceSize(maxTilesPerSide_) * maxTilesPerSide_;
   const VkDeviceSize tableRows = tiles * gpu::kTerrainMaxLayers * gpu::kNoiseMaxOctaves;
+  if (tableRows > context_.properties.limits.maxTexelBufferElements)
+    throw Error(fmt::format("patch textures of {} texels need {} octave-table texels, more than the device's {}", res,
+                            tableRows, context_.properties.limits.maxTexelBufferElements));
   const VkDeviceSize side = res + 2;
   image_ = {context_, vk::createImage2DArray(context_, {res, res}, settings_.levelCount, kFormat,
                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)};
@@ -107,10 +110,15 @@ PatchTextures::PatchTextures(vk::Context& context, const PlanetGpuData& data, co
     const VkDeviceSize levelBytes = sizeof(gpu::PatchLevelParams) + tiles * sizeof(gpu::PatchTile);
     for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
       layer.level[slot] = {context_, vk::createBuffer(context_, levelBytes, storage, vk::MemoryUsage::Upload)};
+      const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
       layer.remainders[slot] = {
-          context_, vk::createBuffer(context_, tableRows * sizeof(glm::vec4), storage, vk::MemoryUsage::Upload)};
+          context_, vk::createBuffer(context_, tableRows * sizeof(glm::vec4), texels, vk::MemoryUsage::Upload)};
       layer.shifts[slot] = {
-          context_, vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), storage, vk::MemoryUsage::Upload)};
+          context_, vk::createBuffer(context_, tableRows * sizeof(glm::uvec4), texels, vk::MemoryUsage::Upload)};
+      layer.remainderTexels[slot] = {
+          context_, vk::createBufferView(context_, *layer.remainders[slot], VK_FORMAT_R32G32B32A32_SFLOAT)};
+      layer.shiftTexels[slot] = {context_,
+                                 vk::createBufferView(context_, *layer.shifts[slot], VK_FORMAT_R32G32B32A32_UINT)};
     }
     layer.heights = {context_,
                      vk::createBuffer(context_, side * side * sizeof(float), storage, vk::MemoryUsage::DeviceLocal)};
@@ -138,8 +146,8 @@ void PatchTextures::createPipelines() {
       for (const vk::ComputePipeline* pipeline : {&heightPipeline_.get(), &normalPipeline_.get()}) {
         VkDescriptorSet set = vk::allocateSet(context_, pipeline->descriptorPool, pipeline->setLayout);
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLevel, buffer, *layer.level[slot]);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, buffer, *layer.remainders[slot]);
-        vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingShifts, buffer, *layer.shifts[slot]);
+        vk::writeTexelBufferDescriptor(context_, set, gpu::kPatchBindingRemainders, layer.remainderTexels[slot].get());
+        vk::writeTexelBufferDescriptor(context_, set, gpu::kPatchBindingShifts, layer.shiftTexels[slot].get());
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingHeights, buffer, *layer.heights);
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingLayers, buffer, data_.layers());
         vk::writeBufferDescriptor(context_, set, gpu::kPatchBindingPermutations, buffer, data_.permutations());

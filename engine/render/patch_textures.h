@@ -153,6 +153,8 @@ class PatchTextures {
     vk::Owned<vk::Buffer> level[vk::kFramesInFlight];       // gpu::PatchLevelParams, then gpu::PatchTile per tile
     vk::Owned<vk::Buffer> remainders[vk::kFramesInFlight];  // each tile's octave remainders
     vk::Owned<vk::Buffer> shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
+    vk::Owned<VkBufferView> remainderTexels[vk::kFramesInFlight];  // the two as texel buffers
+    vk::Owned<VkBufferView> shiftTexels[vk::kFramesInFlight];
     vk::Owned<vk::Buffer> heights;                          // device-local: (resolution + 2)² floats, GPU-written
     // From the pools of heightPipeline_ and normalPipeline_.
     VkDescriptorSet heightSet[vk::kFramesInFlight] = {};

@@ -17,8 +17,8 @@ GPU_NAMESPACE_BEGIN
 
 // Bindings of both passes (set 0; each pass declares the ones it uses).
 GPU_CONST uint kPatchBindingLevel = 0u;         // PatchLevelParams, then PatchTile[tilesPerSide²]
-GPU_CONST uint kPatchBindingRemainders = 1u;    // vec4[tiles · layerCount · kNoiseMaxOctaves]
-GPU_CONST uint kPatchBindingShifts = 2u;        // uvec4[tiles · layerCount · kNoiseMaxOctaves]
+GPU_CONST uint kPatchBindingRemainders = 1u;    // samplerBuffer: vec4[tiles · layerCount · kNoiseMaxOctaves]
+GPU_CONST uint kPatchBindingShifts = 2u;        // usamplerBuffer: uvec4[tiles · layerCount · kNoiseMaxOctaves]
 GPU_CONST uint kPatchBindingHeights = 3u;       // float[(resolution + 2)²]: heights with a 1-texel border
 GPU_CONST uint kPatchBindingLayers = 4u;        // TerrainLayer[kTerrainMaxLayers]
 GPU_CONST uint kPatchBindingPermutations = 5u;  // uint[kTerrainMaxLayers · kNoisePermutationSize]
