@@ -13,7 +13,6 @@
 
 layout(push_constant) uniform Push { TerrainComputePush push; };
 
-layout(std430, set = 0, binding = kRenderBindingLayers) readonly buffer Layers { TerrainLayer layers[]; };
 // The rebased octave tables, read at every octave of every layer: uniform buffers, each reached
 // through an array of one at TERRAIN_TABLE_BLOCK, which the includer defines as 0 in a way the
 // compiler cannot fold (gl_WorkGroupID.z of a one-dimensional dispatch, gl_InstanceIndex of a
@@ -27,6 +26,11 @@ layout(std140, set = 0, binding = kRenderBindingRemainders) uniform Remainders {
 layout(std140, set = 0, binding = kRenderBindingShifts) uniform Shifts {
   uvec4 values[kTerrainMaxLayers * kNoiseMaxOctaves];
 } shiftTables[1];
+// The layers' parameters, likewise: read in the layers' loops over their curves' knots. (TerrainLayer
+// has the same layout in std140 as in std430: all its members align to 16 bytes or pack within one.)
+layout(std140, set = 0, binding = kRenderBindingLayers) uniform Layers {
+  TerrainLayer values[kTerrainMaxLayers];
+} layerTables[1];
 layout(std430, set = 0, binding = kRenderBindingPermutations) readonly buffer Permutations { uint permutations[]; };
 layout(std430, set = 0, binding = kRenderBindingBudgets) readonly buffer Budgets { RingBudget budgets[]; };
 
@@ -68,8 +72,8 @@ vec4 layerNoiseGradient(uint l, vec3 offsetPlanet, uint ring, bool needed);
 #endif
 #define TERRAIN_LAYER_NOISE(l, p, ring, needed) layerNoise(l, p, ring, needed)
 #define TERRAIN_LAYER_NOISE_GRADIENT(l, p, ring, needed) layerNoiseGradient(l, p, ring, needed)
-#define TERRAIN_LAYER(l) layers[l]
-#define TERRAIN_LAYER_AMPLITUDE(l) layers[l].amplitudeM
+#define TERRAIN_LAYER(l) layerTables[TERRAIN_TABLE_BLOCK].values[l]
+#define TERRAIN_LAYER_AMPLITUDE(l) TERRAIN_LAYER(l).amplitudeM
 #include "common/terrain_height.glsl"
 #include "common/surface_attributes.glsl"
 
@@ -81,11 +85,11 @@ NoiseParams layerParams(uint l, uint ring, bool needed) {
   uint type = specLayerType(l);
   uint hash = specLayerHash(l);
 #else
-  uint type = layers[l].noise.type;
-  uint hash = layers[l].noise.hash;
+  uint type = TERRAIN_LAYER(l).noise.type;
+  uint hash = TERRAIN_LAYER(l).noise.hash;
 #endif
   uint octaves = needed && gEvaluateNoise ? budgets[ring].octaves[l] : 0u;
-  return terrainLayerParams(layers[l].noise, type, hash, octaves, budgets[ring].lastOctaveWeight[l]);
+  return terrainLayerParams(TERRAIN_LAYER(l).noise, type, hash, octaves, budgets[ring].lastOctaveWeight[l]);
 }
 
 float layerNoise(uint l, vec3 offsetPlanet, uint ring, bool needed) {

@@ -57,8 +57,10 @@ PlanetGpuData::PlanetGpuData(vk::Context& context, const PlanetDescription& plan
     std::copy(table.begin(), table.end(), permutations.begin() + l * gpu::kNoisePermutationSize);
   }
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  layers_ = {context, vk::createBuffer(context, layers.size() * sizeof(gpu::TerrainLayer), storage,
-                                       vk::MemoryUsage::DeviceLocal)};
+  // All kTerrainMaxLayers: the height pass reads them as a uniform block of that many
+  // (shaders/terrain_vertex_surface.glsl), the patch and relief passes as a storage buffer.
+  layers_ = {context, vk::createBuffer(context, layers.size() * sizeof(gpu::TerrainLayer),
+                                       storage | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::DeviceLocal)};
   vk::uploadBuffer(context, *layers_, layers.data(), layers.size() * sizeof(gpu::TerrainLayer));
   permutations_ = {context, vk::createBuffer(context, permutations.size() * sizeof(uint32_t), storage,
                                              vk::MemoryUsage::DeviceLocal)};

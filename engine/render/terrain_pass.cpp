@@ -52,7 +52,7 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // surface
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // normals
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // attributes
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // layers
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // layers (why uniform: shaders/terrain_vertex_surface.glsl)
     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // remainders (why uniform: shaders/terrain_vertex_surface.glsl)
     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // shifts
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // permutations
