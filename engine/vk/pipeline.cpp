@@ -156,24 +156,30 @@ VkDescriptorSet allocateSet(Context& context, VkDescriptorPool pool, VkDescripto
   return set;
 }
 
-void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
-                           const Buffer& buffer) {
-  VkDescriptorBufferInfo info{buffer.buffer, 0, VK_WHOLE_SIZE};
+namespace {
+
+// One descriptor of `type` at `binding` of `set`; the caller points it at its resource.
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type) {
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set;
   write.dstBinding = binding;
   write.descriptorCount = 1;
   write.descriptorType = type;
+  return write;
+}
+
+}  // namespace
+
+void writeBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                           const Buffer& buffer) {
+  VkDescriptorBufferInfo info{buffer.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write = descriptorWrite(set, binding, type);
   write.pBufferInfo = &info;
   vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
 }
 
 void writeTexelBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkBufferView view) {
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  VkWriteDescriptorSet write = descriptorWrite(set, binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
   write.pTexelBufferView = &view;
   vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
 }
@@ -181,11 +187,7 @@ void writeTexelBufferDescriptor(Context& context, VkDescriptorSet set, uint32_t 
 void writeImageDescriptor(Context& context, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                           VkImageView view, VkImageLayout layout, VkSampler sampler) {
   VkDescriptorImageInfo info{sampler, view, layout};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = type;
+  VkWriteDescriptorSet write = descriptorWrite(set, binding, type);
   write.pImageInfo = &info;
   vkUpdateDescriptorSets(context.device, 1, &write, 0, nullptr);
 }
