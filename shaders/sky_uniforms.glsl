@@ -8,10 +8,10 @@
 // - A storage buffer is read lane by lane, 8 bounds-checked scalar loads per component, wherever
 //   the read is inside control flow (all of these shaders' reads: their first statement returns
 //   early past the image's edge). That made over half of the compose pass (46 → 16 ms at 640×360)
-//   and two thirds of the cloud pass (18 → 6 ms), measured on the default camera at 50 m.
-// - A uniform buffer read at a constant block index has its values that steer branches and loops
-//   compiled into the shader, a new variant whenever they change: every frame of a flight
-//   (+1 MB of process memory per frame, ~400 ms per recompile with the shader cache off).
+//   and two thirds of the cloud pass (18 → 6 ms), measured on a static view 50 m above the ground.
+// - From a uniform buffer at a constant block index, lavapipe compiles the values that steer
+//   branches and loops into the shader, a new variant whenever they change: every frame of a
+//   flight (+1 MB of process memory per frame, ~400 ms per recompile with the shader cache off).
 // A block index that is not a compile-time constant keeps the values out of the shader, and the
 // loads stay single scalar loads (the offsets are constant). The device must support
 // shaderUniformBufferArrayDynamicIndexing (vk::Context requires it).
