@@ -90,7 +90,9 @@ vec3 skyIrradianceAt(float muS) {
   float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * float(kSkyIrradianceSamplesGpu - 1u);
   uint i = min(uint(x), kSkyIrradianceSamplesGpu - 2u);
   float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
-  return night * mix(frameArray(kFrameTexelSkyIrradiance, i).rgb, frameArray(kFrameTexelSkyIrradiance, i + 1u).rgb, x - float(i));
+  vec3 below = frameArray(kFrameTexelSkyIrradiance, i).rgb;
+  vec3 above = frameArray(kFrameTexelSkyIrradiance, i + 1u).rgb;
+  return night * mix(below, above, x - float(i));
 }
 
 // Irradiance from the sun through the air at altitude h with sphere normal `up` (zero on the

@@ -108,7 +108,8 @@ void main() {
   // leaves the waves zero: all of the slope variance is then unresolved roughness.
   uint waveCount = frame.refMinusNadir.w > 0.5f ? kWaterWaveCount : 0u;
   for (uint i = 0u; i < waveCount; ++i) {
-    vec4 wave = frameArray(kFrameTexelWaves, i);  // xy: wave vector (1/m, face axes), z: phase at the reference, w: share of the slope
+    // xy: wave vector (1/m, face axes), z: phase at the reference, w: share of the slope
+    vec4 wave = frameArray(kFrameTexelWaves, i);
     // The wave's phase change across the pixel: where it nears Nyquist the wave leaves the
     // normal (it would alias into moiré) and its slope variance joins the roughness below.
     float phasePerPixel = abs(dot(wave.xy, offsetDx)) + abs(dot(wave.xy, offsetDy));

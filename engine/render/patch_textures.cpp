@@ -25,13 +25,13 @@ namespace {
 
 // Set 0 of both passes (shaders/shared/patch_params.h); each pass uses a subset.
 constexpr VkDescriptorType kBindings[] = {
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLevel
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        // kPatchBindingLevel
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,  // kPatchBindingRemainders (why texels: patch_height.comp)
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,  // kPatchBindingShifts
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingHeights
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingLayers
-    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // kPatchBindingPermutations
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,   // kPatchBindingImage
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        // kPatchBindingHeights
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        // kPatchBindingLayers
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        // kPatchBindingPermutations
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,         // kPatchBindingImage
 };
 static_assert(std::size(kBindings) == gpu::kPatchBindingCount && gpu::kPatchBindingImage == 6);
 // The level buffer's std430 block: PatchLevelParams, then the runtime array of tiles.

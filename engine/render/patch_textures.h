@@ -155,7 +155,7 @@ class PatchTextures {
     vk::Owned<vk::Buffer> shifts[vk::kFramesInFlight];      // each tile's octave lattice shifts
     vk::Owned<VkBufferView> remainderTexels[vk::kFramesInFlight];  // the two as texel buffers
     vk::Owned<VkBufferView> shiftTexels[vk::kFramesInFlight];
-    vk::Owned<vk::Buffer> heights;                          // device-local: (resolution + 2)² floats, GPU-written
+    vk::Owned<vk::Buffer> heights;  // device-local: (resolution + 2)² floats, GPU-written
     // From the pools of heightPipeline_ and normalPipeline_.
     VkDescriptorSet heightSet[vk::kFramesInFlight] = {};
     VkDescriptorSet normalSet[vk::kFramesInFlight] = {};

@@ -1,9 +1,9 @@
 #include "render/terrain_pass.h"
 
 #include <algorithm>
-#include <cstddef>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -220,10 +220,10 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
                                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
     shifts_[slot] = {context, vk::createBuffer(context, kTableRows * sizeof(glm::uvec4),
                                                VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUsage::Upload)};
-    uniforms_[slot] = {context, vk::createBuffer(context, sizeof(gpu::FrameUniforms),
-                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
-                                                     VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
-                                                 vk::MemoryUsage::Upload)};
+    uniforms_[slot] = {context,
+                       vk::createBuffer(context, sizeof(gpu::FrameUniforms),
+                                        VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                        vk::MemoryUsage::Upload)};
     uniformTexels_[slot] = {context, vk::createBufferView(context, *uniforms_[slot], VK_FORMAT_R32G32B32A32_SFLOAT)};
     // Room for every band and the fan, and for a chunk per sector and per workgroup of every ring.
     const VkDeviceSize maxIndices = VkDeviceSize(6) * n * (rings - 1) + VkDeviceSize(3) * n;
@@ -279,9 +279,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   if (planet.hasOcean) {
     if (noiseDrawLayout_.get()) {
       const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
-      water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat,
-                                           settings.eclipses, std::span<const uint32_t>(), noiseVertexSpirv(),
-                                           specialization);
+      water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat, settings.eclipses,
+                                           std::span<const uint32_t>(), noiseVertexSpirv(), specialization);
     } else {
       water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat, settings.eclipses,
                                            kVertexStrides);
@@ -320,14 +319,14 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
                                      !wireframe && shading.ringShadow ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
-  desc.vertexStrides = kVertexStrides;
   std::vector<uint32_t> vertexSpecialization;
-  if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader
+  if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader: no vertex input
     vertexSpecialization = noiseVertexSpecialization(false);
-    desc.vertexStrides = {};
     desc.vertexSpirv = noiseVertexSpirv();
     desc.vertexSpecialization = vertexSpecialization;
     desc.layout = noiseDrawLayout_.get();
+  } else {
+    desc.vertexStrides = kVertexStrides;
   }
   desc.colorFormat = colorFormat_;
   desc.depthFormat = depthFormat_;
@@ -692,9 +691,10 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   } else if (frame_.heightsComputed) {
     if (timer) timer->begin(cmd, "heights");
     // The previous frame's draws read these buffers; the rewrite must wait for them.
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
+    vk::memoryBarrier(cmd,
+                      VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
     const gpu::TerrainComputePush push = heightPush();
     // Heights and normals together (their analytic gradient), on the GPU or uploaded from the CPU.
