@@ -51,10 +51,22 @@ layout(location = 3) in float inHeight;
 layout(location = 4) in vec3 inToCamera;
 
 layout(location = 0) out vec4 outColor;
-// The shader writes its depth (to push ground under the sea back, main below), which would turn
-// off the depth test before shading; it only ever moves a fragment farther (reversed-Z: a
-// smaller depth), so the implementation may still reject hidden fragments before shading them.
+#ifdef TERRAIN_EARLY_DEPTH
+// The variant for planets with no sea (TerrainPass::createDrawPipeline): nothing to push back, so
+// the depth test runs before shading, and with the mesh drawn near to far (clipmap_culling.h)
+// hidden ground costs no shading.
+layout(early_fragment_tests) in;
+#define WRITE_DEPTH(depth)
+#else
+// With a sea, the shader writes its depth (to push ground under the sea back, main below). On
+// lavapipe that moves the depth test after the shader, whatever the layout below says, so every
+// hidden fragment is shaded; a full-screen pass that pushed the sea floor back instead (from a
+// mark this shader left) cost as much as the early test saved (docs/benchmarks.md, "Early depth
+// test"). The layout tells an implementation that may use it that the depth only ever moves
+// farther (reversed-Z: smaller).
 layout(depth_less) out float gl_FragDepth;
+#define WRITE_DEPTH(depth) gl_FragDepth = (depth)
+#endif
 
 // The gas giant's belts and zones: they follow the latitude; the preset's layers (small heights,
 // large wavelengths) warp them into waves and eddies: snow_line_m is the height that moves a band
@@ -122,7 +134,7 @@ vec3 cityLights(float altitude, float slope, float sinLatitude, float jitter, ve
 }
 
 void main() {
-  gl_FragDepth = gl_FragCoord.z;
+  WRITE_DEPTH(gl_FragCoord.z);
   if (frame.shading.z > 0.5f) {  // wireframe debug view
     outColor = vec4(0.05f, 0.25f, 0.08f, 1.0f);
     return;
@@ -150,7 +162,7 @@ void main() {
     // distance, it cannot hide the sea surface in front of it, so the water pass draws the sea
     // here too and the coastline is the patch heights' (the mesh's triangles showed as sandy
     // polygons along the shore). Reversed-Z: half the depth is twice the distance.
-    if (frame.water.z > 0.5f) gl_FragDepth = 0.5f * gl_FragCoord.z;
+    if (frame.water.z > 0.5f) WRITE_DEPTH(0.5f * gl_FragCoord.z);
     // Sea floor: sand near the coast, darker mud deeper down (the water pass tints it).
     float depth = seaLevel - height;
     // A sand shelf narrower than the pixel shows only its share of it.

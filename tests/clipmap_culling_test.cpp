@@ -134,6 +134,28 @@ TEST(ClipmapCulling, KeepsEveryQuadTheFrustumCanSeeAndDropsMostOfTheRest) {
   }
 }
 
+// The triangles come near to far: the pole fan under the camera first, then band by band outward
+// (a triangle's innermost vertex never moves inward along the list), so that the early depth test
+// of a planet without a sea (terrain.frag) finds nearer ground drawn before what it hides.
+TEST(ClipmapCulling, TrianglesComeNearToFar) {
+  const ClipmapMesh mesh = buildClipmapMesh({30, 16, 128});
+  const uint32_t n = mesh.params.numPhi;
+  for (bool cull : {false, true}) {
+    SCOPED_TRACE(cull ? "culled" : "whole");
+    const ClipmapCull result = cullClipmap(mesh, 40, 300, viewFrom(2000.0, 200.0, -8.0, -500.0, 3000.0), 64, cull);
+    ASSERT_GT(result.indices.size(), size_t(3 * n));
+    auto innermost = [&](size_t t) {
+      uint32_t ring = 0;
+      for (size_t k = 0; k < 3; ++k) ring = std::max(ring, mesh.vertices[result.indices[3 * t + k]].ring);
+      return ring;
+    };
+    for (size_t t = 0; t < n; ++t) EXPECT_EQ(innermost(t), mesh.ringCount()) << "triangle " << t << " is not the fan's";
+    for (size_t t = 1; t < result.indices.size() / 3; ++t)
+      ASSERT_LE(innermost(t), innermost(t - 1)) << "triangle " << t << " is nearer than the one before";
+    EXPECT_EQ(innermost(result.indices.size() / 3 - 1), 41u) << "the last band is the outermost, 40..41";
+  }
+}
+
 TEST(ClipmapCulling, BadRangesThrow) {
   const ClipmapMesh mesh = buildClipmapMesh({8, 8, 64});
   const ClipmapCullView view = viewFrom(1000.0, 0.0, 0.0, 0.0, 0.0);

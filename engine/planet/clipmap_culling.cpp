@@ -59,9 +59,21 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
   // needed[ring][i]: vertex i of the ring is used by a kept triangle.
   std::vector<std::vector<bool>> needed(lastRing - firstRing + 1, std::vector<bool>(n, false));
   const double phiStep = 2.0 * 3.14159265358979323846 / double(n);
-  for (uint32_t band = firstRing; band < lastRing; band += kCullBandsPerCell) {
+  // Near to far, so that a depth test before shading (terrain.frag, planets without a sea) finds
+  // the nearer ground already drawn and skips what it hides: first the fan that closes ring
+  // lastRing at the pole (below the camera), then the cells from the innermost band outward.
+  for (uint32_t i = 0; i < n; ++i) {
+    result.indices.insert(result.indices.end(),
+                          {mesh.vertexIndex(lastRing, i), mesh.vertexIndex(lastRing, (i + 1) % n), mesh.poleVertex()});
+    needed[lastRing - firstRing][i] = true;
+  }
+  // Cells of kCullBandsPerCell bands counted from the rim (band firstRing), innermost cell first.
+  const uint32_t cellCount = (lastRing - firstRing + kCullBandsPerCell - 1) / kCullBandsPerCell;
+  for (uint32_t cell = cellCount; cell-- > 0;) {
+    const uint32_t band = firstRing + cell * kCullBandsPerCell;
     const uint32_t bandEnd = std::min(band + kCullBandsPerCell, lastRing);  // bands band..bandEnd−1
     const double outer = mesh.ringTheta(band), inner = mesh.ringTheta(bandEnd);
+    std::vector<uint32_t> keptSectors;
     for (uint32_t s = 0; s < sectors; ++s) {
       const uint32_t q0 = sectorStart(s), q1 = sectorStart(s + 1);  // quads q0..q1−1
       ++result.cellsTotal;
@@ -83,7 +95,12 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
       }
       if (!keep) continue;
       ++result.cellsKept;
-      for (uint32_t b = band; b < bandEnd; ++b) {
+      keptSectors.push_back(s);
+    }
+    // The kept cells' quads band by band, the inner band first.
+    for (uint32_t b = bandEnd; b-- > band;)
+      for (uint32_t s : keptSectors) {
+        const uint32_t q0 = sectorStart(s), q1 = sectorStart(s + 1);
         const size_t base = size_t(6) * n * b;
         result.indices.insert(result.indices.end(), mesh.indices.begin() + ptrdiff_t(base + 6 * size_t(q0)),
                               mesh.indices.begin() + ptrdiff_t(base + 6 * size_t(q1)));
@@ -92,13 +109,6 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
           needed[b + 1 - firstRing][i % n] = true;
         }
       }
-    }
-  }
-  // The fan that closes ring lastRing at the pole, as the terrain pass appends it.
-  for (uint32_t i = 0; i < n; ++i) {
-    result.indices.insert(result.indices.end(),
-                          {mesh.vertexIndex(lastRing, i), mesh.vertexIndex(lastRing, (i + 1) % n), mesh.poleVertex()});
-    needed[lastRing - firstRing][i] = true;
   }
   // The needed vertices as runs of consecutive indices, cut into chunks.
   for (uint32_t ring = firstRing; ring <= lastRing; ++ring) {

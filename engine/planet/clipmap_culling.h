@@ -12,7 +12,8 @@
 // removes triangles that no pixel shows, so the picture is the same, bit for bit.
 //
 // The result is what the terrain pass needs for the frame: the triangle list of the kept quads
-// (taken from the mesh's own index layout, so every triangle keeps its winding) and the vertices
+// (taken from the mesh's own index layout, so every triangle keeps its winding), near to far for
+// the early depth test (the pole fan, then band by band outward), and the vertices
 // those triangles use, as runs of at most `chunkSize` consecutive vertex indices (a compute
 // workgroup each), the pole last.
 #pragma once
@@ -42,7 +43,8 @@ struct ClipmapCullView {
 };
 
 struct ClipmapCull {
-  std::vector<uint32_t> indices;  // triangle list: the kept quads of bands firstRing..lastRing−1, then the fan
+  // Triangle list, near to far: the pole fan, then the kept quads of bands lastRing−1 .. firstRing.
+  std::vector<uint32_t> indices;
   struct Chunk {
     uint32_t firstVertex = 0;
     uint32_t count = 0;  // 1 .. chunkSize

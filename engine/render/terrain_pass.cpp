@@ -24,6 +24,7 @@
 #include "reference/color_schemes_cpu.h"
 #include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
+#include "spv/terrain_early_depth.frag.h"
 #include "spv/terrain.vert.h"
 #include "spv/terrain_noise.vert.h"
 #include "spv/terrain_noise_no_craters.vert.h"
@@ -307,7 +308,9 @@ std::vector<uint32_t> TerrainPass::noiseVertexSpecialization(bool water) const {
 VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
-  desc.fragmentSpirv = kSpv_terrain_frag;
+  // Without a sea the shader writes no depth, and its variant tests the depth before shading
+  // (terrain.frag): the pixels of ground hidden behind nearer ground are not shaded.
+  desc.fragmentSpirv = planet_.hasOcean ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
   // The colour scheme, the polar caps, the eclipses and the frame's shading (TerrainShading) as
   // specialization constants (terrain.frag): lavapipe runs every side of a branch, and the seed
   // schemes' per-pixel noise (or the lights') would cost every planet.
@@ -746,8 +749,9 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipelines_[frame_.shading.key()];
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
   bindDrawState(cmd);
-  // The culled mesh: the kept quads of the drawn bands, then the fan that closes the innermost
-  // drawn ring at the pole (clipmap_culling.h).
+  // The culled mesh, near to far (clipmap_culling.h): the fan that closes the innermost drawn ring
+  // at the pole, then the kept quads of the drawn bands inside out, so that the early depth test
+  // of planets without a sea (terrain.frag) skips most hidden ground before shading it.
   vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
   if (timer) timer->end(cmd);
 }
