@@ -18,6 +18,7 @@
 #include "render/relief_cube.h"
 #include "render/renderer.h"
 #include "render/view_quality.h"
+#include "test_support.h"
 #include "vk/image.h"
 
 namespace planet::test {
@@ -87,13 +88,10 @@ TEST_F(ReliefCubeGpu, BadSizesAreOneLineErrors) {
   }
 }
 
-// Sea pixels of a render without clouds: blue well above red (land is green, brown or white).
+// Sea pixels of a render without clouds (looksLikeSea).
 std::vector<uint8_t> seaMask(const Rgba8Image& image) {
   std::vector<uint8_t> sea(size_t(image.width) * image.height);
-  for (size_t i = 0; i < sea.size(); ++i) {
-    const uint8_t* p = &image.pixels[i * 4];
-    sea[i] = p[2] > p[0] + 40 && p[2] > p[1];
-  }
+  for (size_t i = 0; i < sea.size(); ++i) sea[i] = looksLikeSea(&image.pixels[i * 4]);
   return sea;
 }
 

@@ -17,6 +17,7 @@
 #include "image_compare.h"
 #include "planet/terrain_height.h"
 #include "render/renderer.h"
+#include "test_support.h"
 #include "vk/buffer.h"
 
 namespace planet::test {
@@ -267,9 +268,9 @@ TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
 // draws over it). Without that, coasts seen from 200 km had a fringe of bare sand polygons.
 // The reference is the water-off render, which shows the sea in its own blue colours where the
 // patch heights are below sea level. Only pixels whose four neighbours are sea there too count,
-// so that a pixel across the coastline does not; of those, the water render must show none as bare
-// sand (red at least blue). Shallow water over sand is tinted blue. Measured on lavapipe: 7 of
-// 88,002 such pixels are bare sand, 685 without the push-back.
+// so that a pixel across the coastline does not; of those, the water render may show almost none
+// as bare sand (red at least blue; fewer than 70). Shallow water over sand is tinted blue.
+// Measured on lavapipe: 7 of 88,002 such pixels are bare sand, 685 without the push-back.
 TEST_F(TerrainRender, TheSeaCoversEveryPixelOfGroundBelowSeaLevel) {
   PlanetDescription planet = resolvePreset("earth");
   planet.clouds.enabled = false;
@@ -286,10 +287,7 @@ TEST_F(TerrainRender, TheSeaCoversEveryPixelOfGroundBelowSeaLevel) {
   writePng((std::filesystem::path(testOutputDir()) / "sea_over_the_sea_floor.png").string(), withWater);
   const int w = int(withWater.width), h = int(withWater.height);
   auto at = [](const Rgba8Image& image, int x, int y) { return &image.pixels[(size_t(y) * image.width + x) * 4]; };
-  auto sea = [&](int x, int y) {
-    const uint8_t* p = at(withoutWater, x, y);
-    return p[2] > p[0] + 40 && p[2] > p[1];
-  };
+  auto sea = [&](int x, int y) { return looksLikeSea(at(withoutWater, x, y)); };
   int inner = 0, bare = 0;
   for (int y = 1; y + 1 < h; ++y)
     for (int x = 1; x + 1 < w; ++x) {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,11 @@
 #include "core/error.h"
 
 namespace planet::test {
+
+// Whether an RGBA8 pixel of a render without clouds shows the sea (or, with the water off, the
+// sea's own colours): blue well above red and above green. Land is green, brown or white, the
+// sea floor sand or mud.
+inline bool looksLikeSea(const uint8_t* rgba) { return rgba[2] > rgba[0] + 40 && rgba[2] > rgba[1]; }
 
 // The message of the planet::Error that `fn` throws, or "" when it throws nothing; any other
 // exception escapes and fails the test.
