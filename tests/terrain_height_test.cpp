@@ -69,6 +69,57 @@ TEST(TerrainHeight, EarthHeightsArePlausibleAndVaryAlongALine) {
   EXPECT_GT(*hi - *lo, 1'000.0) << "a 10,000 km line should cross real relief";
 }
 
+// The terrain's height bounds (estimateTerrainHeightBounds: the horizon cut, the culling hulls,
+// the frame's shading bounds) hold at 6,000 points of every built-in preset, a lattice other than
+// the estimate's own; Earth's come from its layers' ranges (exactTerrainHeightBounds) and are
+// within a few km of its highest and lowest ground, where the sampled estimate alone gave 144 km.
+TEST(TerrainHeight, BoundsHoldEverywhereAndFollowTheLayersRanges) {
+  for (const char* name : {"earth", "mars", "moon", "giant", "faults", "mpd"}) {
+    SCOPED_TRACE(name);
+    const PlanetDescription planet = resolvePreset(name);
+    const TerrainHeightBounds bounds = estimateTerrainHeightBounds(planet);
+    constexpr int kPoints = 6000;
+    double lowest = 1e300, highest = -1e300;
+    for (int i = 0; i < kPoints; ++i) {
+      const double z = 1.0 - (2.0 * i + 1.0) / kPoints;
+      const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.3999632297286533 * i + 0.7;
+      const double h = terrainHeightM(planet, {r * std::cos(phi), z, r * std::sin(phi)});
+      lowest = std::min(lowest, h);
+      highest = std::max(highest, h);
+    }
+    std::printf("%s: heights %.0f .. %.0f m at %d points, bounds %.0f .. %.0f m\n", name, lowest, highest, kPoints,
+                bounds.minM, bounds.maxM);
+    EXPECT_LE(bounds.minM, lowest);
+    EXPECT_GE(bounds.maxM, highest);
+  }
+  const PlanetDescription earth = resolvePreset("earth");
+  const std::optional<TerrainHeightBounds> exact = exactTerrainHeightBounds(earth);
+  ASSERT_TRUE(exact.has_value());
+  // Continents' hypsometry -6300 .. 1200 m, mountains 0 .. 5000, hills 0 .. 900, ground ±30 m
+  // times its octaves' weights (~2.2) and the simplex bound.
+  EXPECT_NEAR(exact->minM, -6300.0 - 30.0 * 2.23 * 1.025, 20.0);
+  EXPECT_NEAR(exact->maxM, 1200.0 + 5000.0 + 900.0 + 30.0 * 2.23 * 1.025, 20.0);
+  EXPECT_EQ(estimateTerrainHeightBounds(earth).maxM, exact->maxM);
+
+  // A plain fBm layer: its octaves' weights times the simplex bound, scaled and shifted.
+  PlanetDescription plain = earth;
+  plain.layers.resize(1);
+  plain.layers[0].hypsometry.clear();
+  plain.layers[0].amplitudeM = -100.0;
+  plain.heightScale = 2.0;
+  plain.baseHeightM = 50.0;
+  const double w = std::pow(plain.layers[0].noise.lacunarity, -plain.layers[0].noise.H);
+  double weights = 0.0;
+  for (int i = 0; i < plain.layers[0].noise.octaves; ++i) weights += std::pow(w, i);
+  const std::optional<TerrainHeightBounds> fbm = exactTerrainHeightBounds(plain);
+  ASSERT_TRUE(fbm.has_value());
+  EXPECT_NEAR(fbm->maxM, 2.0 * (50.0 + 100.0 * 1.025 * weights), 2.0);
+  EXPECT_NEAR(fbm->minM, 2.0 * (50.0 - 100.0 * 1.025 * weights), 2.0);
+  // A fractal without a curve whose range is not derived (ridged): no exact bounds.
+  plain.layers[0].noise.type = noise::NoiseType::Ridged;
+  EXPECT_FALSE(exactTerrainHeightBounds(plain).has_value());
+}
+
 // Where the noise's planes x = y, y = z, x = z (simplex faces at every octave) cut the surface,
 // and where the axes do, two points 1 mm apart on either side differ by no more than the ground's
 // slope allows. With Gustavson's 0.6 kernel they differed by 2-7 m at the poles and by 17 cm

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -54,6 +56,68 @@ double surfaceHeightM(const PlanetDescription& planet, const glm::dvec3& directi
   return planet.hasOcean ? std::max(ground, planet.seaLevelM) : ground;
 }
 
+namespace {
+
+struct HeightRange {
+  double lo = 0.0, hi = 0.0;
+};
+
+HeightRange times(HeightRange a, HeightRange b) {
+  const double p[] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {*std::min_element(std::begin(p), std::end(p)), *std::max_element(std::begin(p), std::end(p))};
+}
+
+HeightRange curveRange(const std::vector<CurvePoint>& points) {
+  HeightRange r{points.front().y, points.front().y};
+  for (const CurvePoint& point : points) r = {std::min(r.lo, point.y), std::max(r.hi, point.y)};
+  return r;
+}
+
+// The largest |N| of one simplex octave: a search found 0.976 (shaders/common/noise.glsl,
+// kNoiseScale); 5 % more.
+constexpr double kSimplexBound = 1.025;
+
+}  // namespace
+
+std::optional<TerrainHeightBounds> exactTerrainHeightBounds(const PlanetDescription& planet) {
+  std::vector<HeightRange> values;
+  HeightRange sum{planet.baseHeightM, planet.baseHeightM};
+  for (size_t l = 0; l < planet.layers.size(); ++l) {
+    const NoiseLayer& layer = planet.layers[l];
+    // The noise through its curve: clamped to its end values outside its knots and monotone
+    // between them (Fritsch–Carlson, terrain_shape.cpp), so within its values' range whatever
+    // the noise; without a curve only the fractals whose sum of octaves is bounded.
+    HeightRange noise;
+    if (!layer.hypsometry.empty()) {
+      noise = curveRange(layer.hypsometry);
+    } else if (!layer.transfer.empty()) {
+      noise = curveRange(layer.transfer);
+    } else if (layer.noise.type == noise::NoiseType::Simplex || layer.noise.type == noise::NoiseType::Fbm) {
+      // fBm: Σ N_i w^i over its octaves (the last faded toward the sum before it).
+      const double w = double(noise::toNoiseParams(layer.noise).octaveWeight);
+      double weights = 0.0;
+      const int octaves = layer.noise.type == noise::NoiseType::Simplex ? 1 : layer.noise.octaves;
+      for (int i = 0; i < octaves; ++i) weights += std::pow(std::abs(w), i);
+      noise = {-kSimplexBound * weights, kSimplexBound * weights};
+    } else {
+      return std::nullopt;
+    }
+    HeightRange mask{1.0, 1.0};
+    if (!layer.mask.empty()) {
+      size_t source = 0;
+      while (planet.layers[source].name != layer.mask) ++source;  // an earlier layer (the parser's rule)
+      mask = layer.maskCurve.empty() ? values[source] : curveRange(layer.maskCurve);
+    }
+    values.push_back(times(noise, mask));
+    const HeightRange term = times(values.back(), {layer.amplitudeM, layer.amplitudeM});
+    sum = {sum.lo + term.lo, sum.hi + term.hi};
+  }
+  const HeightRange height = times(sum, {planet.heightScale, planet.heightScale});
+  // The shaders evaluate in float: a thousandth and a metre for their rounding.
+  const double slack = 1e-3 * std::max(std::abs(height.lo), std::abs(height.hi)) + 1.0;
+  return TerrainHeightBounds{std::min(0.0, height.lo - slack), std::max(0.0, height.hi + slack)};
+}
+
 TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet) {
   constexpr int kSamples = 4096;
   const double spacing = planet.radiusM * std::sqrt(4.0 * std::numbers::pi / kSamples);
@@ -83,10 +147,25 @@ TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet)
     for (uint32_t k = 0; k + 1 < shape.curveKnots; ++k)
       steepest = std::max(steepest, 3.0 * std::abs(double(shape.knots[k + 1].y) - double(shape.knots[k].y)) /
                                         (double(shape.knots[k + 1].x) - double(shape.knots[k].x)));
-    margin += std::abs(layer.amplitudeM) * 2.0 * tail * steepest * layerMaskBound(planet, l);
+    double layerMargin = 2.0 * tail * steepest;
+    // A curve keeps the layer within its largest value either side of 0 whatever the octaves
+    // add, so no two points differ by more than twice that (its steepest slope is unbounded
+    // where two knots nearly meet, as at a hypsometry's cliff).
+    if (!layer.hypsometry.empty() || !layer.transfer.empty()) {
+      const HeightRange values = curveRange(layer.hypsometry.empty() ? layer.transfer : layer.hypsometry);
+      layerMargin = std::min(layerMargin, 2.0 * std::max(std::abs(values.lo), std::abs(values.hi)));
+    }
+    margin += std::abs(layer.amplitudeM) * layerMargin * layerMaskBound(planet, l);
   }
   margin *= std::abs(planet.heightScale);
-  return {std::min(0.0, (lowest - margin) * 1.1), std::max(0.0, (highest + margin) * 1.1)};
+  TerrainHeightBounds bounds{std::min(0.0, (lowest - margin) * 1.1), std::max(0.0, (highest + margin) * 1.1)};
+  // Where every layer's range is known, the sum of the ranges is a bound too, and often far
+  // tighter (the margin above scales the finer octaves by a curve's steepest slope anywhere).
+  if (const std::optional<TerrainHeightBounds> exact = exactTerrainHeightBounds(planet)) {
+    bounds.minM = std::max(bounds.minM, exact->minM);
+    bounds.maxM = std::min(bounds.maxM, exact->maxM);
+  }
+  return bounds;
 }
 
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,

@@ -3,6 +3,7 @@
 // terrain is checked against, and what `planet height` prints.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -34,16 +35,24 @@ double terrainHeightM(const PlanetDescription& planet, const glm::dvec3& directi
 // where the planet has an ocean above it (metres above the radius sphere).
 double surfaceHeightM(const PlanetDescription& planet, const glm::dvec3& direction);
 
-// Estimates of the lowest and highest terrain of the planet, for the horizon cut: the extremes
-// over 4096 directions spread evenly over the sphere (a Fibonacci lattice) at ~200 km spacing,
-// widened by what the octaves finer than that and the points between the samples may add (the
-// summed amplitude of every layer's omitted octaves, bounded generously, plus 10 %). minM is at
-// most 0 and maxM at least 0 (the radius sphere is always inside the bounds).
+// Estimates of the lowest and highest terrain of the planet, for the horizon cut, the culling
+// hulls and the per-frame shading bounds: the extremes over 4096 directions spread evenly over
+// the sphere (a Fibonacci lattice) at ~200 km spacing, widened by what the octaves finer than
+// that and the points between the samples may add (the summed amplitude of every layer's omitted
+// octaves, bounded generously, plus 10 %), and narrowed to exactTerrainHeightBounds where that
+// exists. minM is at most 0 and maxM at least 0 (the radius sphere is always inside the bounds).
 struct TerrainHeightBounds {
   double minM = 0.0;
   double maxM = 0.0;
 };
 TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet);
+
+// Bounds that hold everywhere, from each layer's range: a curve's values (it is clamped at its
+// ends and monotone between its knots), or for a simplex or fBm layer without one its octaves'
+// weights times the largest simplex value; masks multiply ranges, amplitudes scale them. None
+// when some layer has neither (the other fractals). Without sampling, so they may be wider
+// than the terrain ever reaches, but never narrower (Earth's preset: about -6.4 to 7.2 km).
+std::optional<TerrainHeightBounds> exactTerrainHeightBounds(const PlanetDescription& planet);
 
 // Heights along a great circle: `count` samples `stepM` apart, starting at `start`.
 std::vector<double> terrainHeightsAlong(const PlanetDescription& planet, const glm::dvec3& start, double bearingDeg,
