@@ -10,6 +10,9 @@
 
 #include "terrain_common.glsl"
 
+// The relief cube's lookup: false when no pixel's footprint can reach the size that takes it.
+layout(constant_id = 6) const bool kSpecRelief = true;
+#define RELIEF_POSSIBLE kSpecRelief
 #include "terrain_surface.glsl"
 
 // Per frame, the parts of the shading the view can show (TerrainPass::shadingFor), as
@@ -141,7 +144,7 @@ void main() {
   }
   vec3 normal;
   float height;
-  surfaceDetail(inAttributes.xy, inUp, inNormal, inHeight, normal, height);
+  surfaceDetail(inAttributes.xy, inUp, inToCamera, inNormal, inHeight, normal, height);
   float pixelM = fwidth(height);  // before any branch: derivatives need uniform control flow
   // This pixel relative to the mesh's anchor (small floats near the camera) and its footprint
   // on the ground (the larger of its two sides, so no octave finer than the pixel shows).

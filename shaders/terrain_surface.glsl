@@ -11,6 +11,13 @@ layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 #include "atmosphere_lookup.glsl"
 #include "shared/relief_params.h"
 
+// Whether some pixel can take the relief cube (TerrainPass::shadingFor): a specialization
+// constant where the includer declares one (terrain.frag), as lavapipe runs the lookup whatever
+// its weight.
+#ifndef RELIEF_POSSIBLE
+#define RELIEF_POSSIBLE true
+#endif
+
 // Normal (local frame) and height at this pixel from the patch levels, chosen like a mip level:
 // lod = log2(pixel footprint / finest texel), so detail changes continuously across the screen
 // (no rectangles where one level ends). Level floor(lod) and the next are blended by the
@@ -21,11 +28,15 @@ layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 // hemisphere from orbit, one texel stretches over tens of pixels and the coast turned into
 // blocks. There (more than ~65° from the face normal) the patches fade out.
 // What the patches leave goes to the relief cube (relief_cube.h: the whole planet at a fixed
-// spacing, mipmapped) where its texels are at most ~4 pixels wide, else to the vertex values:
+// spacing, mipmapped) where its texels are at most ~4 pixels wide across the line of sight (the
+// pixel's distance times the angle it spans, the footprint no tilt of the ground lengthens, so
+// that TerrainPass::shadingFor can bound it for a frame from the farthest drawn ground and leave
+// the lookup out where no pixel can take it), else to the vertex values:
 // from orbit, beyond the face and at quality `low`, the coast follows the cube's texels instead
 // of the mesh's triangles, hundreds of km wide near the limb; near the camera, where the cube is
 // far coarser than a pixel, the vertices (every octave the ring can show) stay.
-void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, out vec3 normal, out float height) {
+void surfaceDetail(vec2 face, vec3 up, vec3 toCamera, vec3 vertexNormal, float vertexHeight, out vec3 normal,
+                   out float height) {
   vec3 accumulatedNormal = vec3(0.0f);
   float accumulatedHeight = 0.0f;
   float remaining = 1.0f;
@@ -36,6 +47,8 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
   vec3 unitUp = normalize(up);
   float angleX = length(dFdx(unitUp));
   float angleY = length(dFdy(unitUp));
+  vec3 ray = normalize(toCamera);
+  float across = length(toCamera) * min(length(dFdx(ray)), length(dFdy(ray))) / frame.camera.y;
   vec3 faceNormal = mat3(frame.planetToLocal) * frame.faceNormal.xyz;
   float onFace = smoothstep(0.35f, 0.45f, dot(unitUp, faceNormal));
   if (levels > 0u && onFace > 0.0f) {
@@ -65,12 +78,15 @@ void surfaceDetail(vec2 face, vec3 up, vec3 vertexNormal, float vertexHeight, ou
   accumulatedNormal *= onFace;
   accumulatedHeight *= onFace;
   remaining = 1.0f - onFace * (1.0f - remaining);
-  // The relief cube: texels 2 / size radians wide at a face's centre; its mip level from the
-  // larger of the pixel's two extents (softer along a grazing view, never aliased).
+  // The relief cube: texels 2 / size radians wide at a face's centre; its weight from the
+  // pixel's extent across the line of sight, its mip level from the larger of the pixel's two
+  // extents on the sphere (softer along a grazing view, never aliased).
   uint reliefSize = uint(textureSize(reliefCube, 0).x);
   float texelAngle = 2.0f / float(reliefSize);
-  float pixelsPerTexel = texelAngle / max(min(angleX, angleY), 1e-30f);
-  float relief = reliefSize > kReliefStandInSize ? remaining * (1.0f - smoothstep(4.0f, 8.0f, pixelsPerTexel)) : 0.0f;
+  float pixelsPerTexel = texelAngle / max(across, 1e-30f);
+  float relief = RELIEF_POSSIBLE && reliefSize > kReliefStandInSize
+                     ? remaining * (1.0f - smoothstep(4.0f, 8.0f, pixelsPerTexel))
+                     : 0.0f;
   if (relief > 0.0f) {
     float reliefLod = max(log2(max(angleX, angleY) / texelAngle), 0.0f);
     vec4 texel = textureLod(reliefCube, mat3(frame.localToPlanet) * unitUp, reliefLod);

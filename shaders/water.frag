@@ -81,7 +81,7 @@ float glintFactor(vec3 normal, vec3 toCamera, vec3 sun, float m2) {
 void main() {
   vec3 terrainNormal;
   float ground;
-  surfaceDetail(inAttributes.xy, inUp, inNormal, inHeight, terrainNormal, ground);
+  surfaceDetail(inAttributes.xy, inUp, inToCamera, inNormal, inHeight, terrainNormal, ground);
   float depth = frame.planet.x - ground;
   // The coastline follows the patch heights. It is antialiased: the water covers the part of
   // the pixel where the depth, extrapolated over the pixel by its screen derivatives, is

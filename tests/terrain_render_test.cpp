@@ -16,6 +16,7 @@
 #include "gpu_fixture.h"
 #include "image_compare.h"
 #include "planet/terrain_height.h"
+#include "render/relief_cube.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "vk/buffer.h"
@@ -230,6 +231,15 @@ TEST(TerrainShading, NightAndFootprintBoundsFollowTheView) {
   const double fov = std::numbers::pi / 3.0;
   EXPECT_NEAR(smallestFootprintM(up * (radius + 10000.0), radius, 9000.0, fov, 160, 90), 1000.0 * 5.375e-3, 1e-3);
   EXPECT_EQ(smallestFootprintM(up * (radius + 8000.0), radius, 9000.0, fov, 160, 90), 0.0);
+  // The relief cube (512 texels a side: 3.9e-3 rad) takes pixels wider than an eighth of that
+  // across the line of sight. At 640x360 (f = 311.8 pixels) a pixel 600 km away is 3.0e-4 rad
+  // wide on Earth, so pixels need to lie beyond 970 km (924 km with the 5 % margin): an outer
+  // ring 0.09 rad out (574 km) or 0.12 rad (765 km) is too near, 0.16 rad (1,020 km) is not.
+  EXPECT_FALSE(reliefInView(radius, 600.0, 0.09, 0.0, 7200.0, fov, 360, 512));
+  EXPECT_FALSE(reliefInView(radius, 600.0, 0.12, 0.0, 7200.0, fov, 360, 512));
+  EXPECT_TRUE(reliefInView(radius, 600.0, 0.16, 0.0, 7200.0, fov, 360, 512));
+  EXPECT_TRUE(reliefInView(radius, 600.0, 0.09, 0.0, 7200.0, fov, 90, 512)) << "at 160x90 pixels are 4x wider";
+  EXPECT_FALSE(reliefInView(radius, 4.0e5, 1.0, 0.0, 7200.0, fov, 360, kReliefStandInSize)) << "a stand-in";
 }
 
 // Leaving out what a view cannot show leaves the picture bit for bit as it was: each view drawn
@@ -261,6 +271,29 @@ TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
     EXPECT_TRUE(everything.terrain().frame().shading.lights && everything.terrain().frame().shading.groundDetail);
     EXPECT_EQ(shaded.image.pixels, reference.image.pixels);
   }
+}
+
+// The relief cube's lookup is left out of frames where no pixel can take it (reliefInView): low
+// over the ground at 320x180 the farthest drawn ground is too near for a pixel to span an eighth
+// of a relief texel, and the picture is the same bit for bit as with the lookup; from 400 km it
+// is kept.
+TEST_F(TerrainRender, TheReliefCubeIsLeftOutWhereNoPixelCanTakeIt) {
+  const PlanetDescription planet = resolvePreset("earth");
+  RenderSettings settings = smallSettings(true);
+  settings.width = 320;
+  settings.height = 180;
+  RenderSettings all = settings;
+  all.terrain.shadingPerFrame = false;
+  Renderer perFrame(context(), planet, settings);
+  Renderer everything(context(), planet, all);
+  const CameraPose low{kLat, kLon, 600.0, 60.0, -3.0};
+  const RenderResult shaded = perFrame.render(low, {});
+  const RenderResult reference = everything.render(low, {});
+  EXPECT_FALSE(perFrame.terrain().frame().shading.relief);
+  EXPECT_TRUE(everything.terrain().frame().shading.relief);
+  EXPECT_EQ(shaded.image.pixels, reference.image.pixels);
+  perFrame.render({kLat, kLon, 4.0e5, 0.0, -60.0}, {});
+  EXPECT_TRUE(perFrame.terrain().frame().shading.relief);
 }
 
 // The sea covers every pixel whose patch height is below sea level, also where the mesh's coarser

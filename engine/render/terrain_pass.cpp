@@ -144,6 +144,24 @@ double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double
   return nearest * f / (f * f + rho2);
 }
 
+bool reliefInView(double radiusM, double altitudeM, double outerTheta, double lowestSurfaceM, double maxTerrainHeightM,
+                  double fovYRad, uint32_t height, uint32_t reliefSize) {
+  if (reliefSize <= kReliefStandInSize) return false;
+  if (height == 0 || !(radiusM > 0.0)) return true;
+  // The distance from the camera grows with θ and is convex in the height: the farthest drawn
+  // point is a vertex of the outer ring at one of the two heights.
+  const double camera = radiusM + altitudeM;
+  double farthest = 0.0;
+  for (double h : {lowestSurfaceM, maxTerrainHeightM}) {
+    const double r = radiusM + h;
+    farthest =
+        std::max(farthest, std::sqrt(std::max(r * r + camera * camera - 2.0 * r * camera * std::cos(outerTheta), 0.0)));
+  }
+  const double f = 0.5 * double(height) / std::tan(0.5 * fovYRad);
+  // 5 % of margin for the shader's float derivatives.
+  return 1.05 * farthest / (f * radiusM) >= (2.0 / double(reliefSize)) / 8.0;
+}
+
 const char* heightSourceName(HeightSource source) {
   switch (source) {
     case HeightSource::Compute: return "compute";
@@ -319,7 +337,8 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
                                      !wireframe && shading.lights ? 1u : 0u,
                                      settings_.eclipses ? 1u : 0u,
                                      !wireframe && shading.groundDetail ? 1u : 0u,
-                                     !wireframe && shading.ringShadow ? 1u : 0u};
+                                     !wireframe && shading.ringShadow ? 1u : 0u,
+                                     !wireframe && shading.relief ? 1u : 0u};
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   std::vector<uint32_t> vertexSpecialization;
@@ -346,8 +365,9 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
   shading.lights = lightsDrawn();
   shading.groundDetail = true;
   shading.ringShadow = ring_.has_value();
+  shading.relief = relief_->size() > kReliefStandInSize;
   // A frozen mesh is seen from anywhere: all of it.
-  if (!settings_.shadingPerFrame || lodFrozen) return shading;
+  if (!settings_.shadingPerFrame || lodFrozen || !lod_) return shading;
   const glm::dvec3& camera = view.camera.position;
   const double radius = planet_.radiusM;
   shading.lights =
@@ -357,19 +377,23 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
   const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
   shading.groundDetail = 0.9 * smallestFootprintM(camera, radius, maxTerrainHeightM_, view.fovYRad, view.width,
                                                    view.height) < 0.5 * longestDetailM;
+  shading.relief = reliefInView(radius, lod_->orientation.altitudeM, mesh_.ringTheta(lod_->rings.firstRing),
+                                lowestSurfaceM_, maxTerrainHeightM_, view.fovYRad, view.height, relief_->size());
   return shading;
 }
 
 void TerrainPass::prepareShadingPipelines() {
   if (!wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
   for (bool lights : {false, lightsDrawn()})
-    for (bool detail : {false, true}) {
-      TerrainShading shading;
-      shading.lights = lights;
-      shading.groundDetail = detail;
-      shading.ringShadow = ring_.has_value();
-      buildFillPipeline(shading);
-    }
+    for (bool detail : {false, true})
+      for (bool relief : {false, relief_->size() > kReliefStandInSize}) {
+        TerrainShading shading;
+        shading.lights = lights;
+        shading.groundDetail = detail;
+        shading.ringShadow = ring_.has_value();
+        shading.relief = relief;
+        buildFillPipeline(shading);
+      }
 }
 
 void TerrainPass::buildFillPipeline(const TerrainShading& shading) {

@@ -101,8 +101,11 @@ struct TerrainShading {
   bool lights = false;        // city lights: the planet has them, they are on, and night is in view
   bool groundDetail = false;  // the detail octaves: some pixel's footprint is fine enough to show them
   bool ringShadow = false;    // the body's rings shadow it
-  uint32_t key() const { return (lights ? 1u : 0u) | (groundDetail ? 2u : 0u) | (ringShadow ? 4u : 0u); }
-  static constexpr uint32_t kKeys = 8;
+  bool relief = false;        // the relief cube: some pixel's footprint can reach the size that takes it
+  uint32_t key() const {
+    return (lights ? 1u : 0u) | (groundDetail ? 2u : 0u) | (ringShadow ? 4u : 0u) | (relief ? 8u : 0u);
+  }
+  static constexpr uint32_t kKeys = 16;
 };
 
 // Whether any ground the mesh can show (the horizon cut's cap around the camera's nadir,
@@ -115,6 +118,13 @@ bool nightInView(const glm::dvec3& cameraPlanet, const glm::dvec3& sunDirection,
 // the camera is below the highest terrain.
 double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double maxTerrainHeightM, double fovYRad,
                           uint32_t width, uint32_t height);
+// Whether some pixel can take the relief cube (terrain_surface.glsl: its weight needs a pixel's
+// extent across the line of sight, distance × angle / radius, above an eighth of a texel's angle
+// 2 / reliefSize). A pixel spans at most 1 / f radians (f: the focal length in pixels, at the
+// image's centre) and lies no farther than the farthest drawn vertex: on the outermost drawn
+// ring (outerTheta from the mesh's pole below the camera), at the lowest or highest surface.
+bool reliefInView(double radiusM, double altitudeM, double outerTheta, double lowestSurfaceM, double maxTerrainHeightM,
+                  double fovYRad, uint32_t height, uint32_t reliefSize);
 
 // What the CPU decided for a frame.
 struct TerrainFrameInfo {
