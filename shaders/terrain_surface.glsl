@@ -57,6 +57,12 @@ void surfaceDetail(vec2 face, vec3 up, vec3 toCamera, vec3 vertexNormal, float v
     float lod = clamp(log2(max(footprint * finest.y * resolution, 1e-30f)), 0.0f, float(levels - 1u));
     uint first = uint(lod);
     float fraction = lod - float(first);
+    // The levels' weights first, from the level tables alone; then two texture reads, the first
+    // two levels that have weight, the second taking the weight of any after it (a third level
+    // shares a pixel only near the edge of one built over several frames). On lavapipe a loop
+    // runs for as many turns as its slowest lane, and a read was most of a turn.
+    vec3 storedA = vec3(0.0f), storedB = vec3(0.0f);
+    float shareA = 0.0f, shareB = 0.0f;
     for (uint j = first; j < levels && remaining > 0.0f; ++j) {
       vec4 level = frameArray(kFrameTexelPatchLevels, j);
       vec2 uv = (face + level.zw) * level.y;
@@ -68,12 +74,23 @@ void surfaceDetail(vec2 face, vec3 up, vec3 toCamera, vec3 vertexNormal, float v
       if (weight <= 0.0f) continue;
       // Toroidal storage: the level's texel (0, 0) sits at its wrap offset; the sampler repeats.
       vec4 wrap = frameArray(kFrameTexelPatchWrap, j >> 1u);
-      vec2 stored = uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw);
-      vec4 texel = textureLod(patches, vec3(stored, level.x), 0.0f);
-      accumulatedNormal += remaining * weight * (mat3(frame.planetToLocal) * texel.xyz);
-      accumulatedHeight += remaining * weight * texel.w;
+      vec3 stored = vec3(uv + ((j & 1u) == 0u ? wrap.xy : wrap.zw), level.x);
+      float share = remaining * weight;
+      if (shareA == 0.0f) {
+        storedA = stored;
+        shareA = share;
+      } else {
+        if (shareB == 0.0f) storedB = stored;
+        shareB += share;
+      }
       remaining *= 1.0f - weight;
     }
+    // A read without weight counts for nothing, whatever the texel holds (a layer not yet built).
+    vec4 texelA = shareA > 0.0f ? textureLod(patches, storedA, 0.0f) : vec4(0.0f);
+    vec4 texelB = shareB > 0.0f ? textureLod(patches, storedB, 0.0f) : vec4(0.0f);
+    accumulatedNormal =
+        shareA * (mat3(frame.planetToLocal) * texelA.xyz) + shareB * (mat3(frame.planetToLocal) * texelB.xyz);
+    accumulatedHeight = shareA * texelA.w + shareB * texelB.w;
   }
   accumulatedNormal *= onFace;
   accumulatedHeight *= onFace;
