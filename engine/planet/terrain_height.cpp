@@ -103,11 +103,8 @@ std::optional<TerrainHeightBounds> exactTerrainHeightBounds(const PlanetDescript
       return std::nullopt;
     }
     HeightRange mask{1.0, 1.0};
-    if (!layer.mask.empty()) {
-      size_t source = 0;
-      while (planet.layers[source].name != layer.mask) ++source;  // an earlier layer (the parser's rule)
-      mask = layer.maskCurve.empty() ? values[source] : curveRange(layer.maskCurve);
-    }
+    if (!layer.mask.empty())
+      mask = layer.maskCurve.empty() ? values[maskIndex(planet, l)] : curveRange(layer.maskCurve);
     values.push_back(times(noise, mask));
     const HeightRange term = times(values.back(), {layer.amplitudeM, layer.amplitudeM});
     sum = {sum.lo + term.lo, sum.hi + term.hi};
@@ -147,15 +144,13 @@ TerrainHeightBounds estimateTerrainHeightBounds(const PlanetDescription& planet)
     for (uint32_t k = 0; k + 1 < shape.curveKnots; ++k)
       steepest = std::max(steepest, 3.0 * std::abs(double(shape.knots[k + 1].y) - double(shape.knots[k].y)) /
                                         (double(shape.knots[k + 1].x) - double(shape.knots[k].x)));
-    double layerMargin = 2.0 * tail * steepest;
-    // A curve keeps the layer within its largest value either side of 0 whatever the octaves
-    // add, so no two points differ by more than twice that (its steepest slope is unbounded
-    // where two knots nearly meet, as at a hypsometry's cliff).
-    if (!layer.hypsometry.empty() || !layer.transfer.empty()) {
-      const HeightRange values = curveRange(layer.hypsometry.empty() ? layer.transfer : layer.hypsometry);
-      layerMargin = std::min(layerMargin, 2.0 * std::max(std::abs(values.lo), std::abs(values.hi)));
-    }
-    margin += std::abs(layer.amplitudeM) * layerMargin * layerMaskBound(planet, l);
+    double layerMargin = 2.0 * tail * steepest * layerMaskBound(planet, l);
+    // A curve keeps the layer within its value bound either side of 0 whatever the octaves add,
+    // so no two points differ by more than twice that (its steepest slope is unbounded where two
+    // knots nearly meet, as at a hypsometry's cliff).
+    if (!layer.hypsometry.empty() || !layer.transfer.empty())
+      layerMargin = std::min(layerMargin, 2.0 * layerValueBound(planet, l));
+    margin += std::abs(layer.amplitudeM) * layerMargin;
   }
   margin *= std::abs(planet.heightScale);
   TerrainHeightBounds bounds{std::min(0.0, (lowest - margin) * 1.1), std::max(0.0, (highest + margin) * 1.1)};

@@ -110,16 +110,12 @@ void curveKnots(std::span<const CurvePoint> points, gpu::vec4* knots) {
   for (size_t k = 0; k < n; ++k) knots[k] = gpu::vec4(x[k], float(points[k].y), float(slope[k]), 0.0f);
 }
 
-namespace {
-
 size_t maskIndex(const PlanetDescription& planet, size_t l) {
   const std::string& mask = planet.layers[l].mask;
   for (size_t i = 0; i < l; ++i)
     if (planet.layers[i].name == mask) return i;
   throw Error(fmt::format("layer '{}': mask '{}' names no earlier layer", planet.layers[l].name, mask));
 }
-
-}  // namespace
 
 gpu::TerrainLayer terrainLayerShape(const PlanetDescription& planet, size_t l) {
   const NoiseLayer& layer = planet.layers[l];

@@ -35,6 +35,9 @@ std::vector<double> noiseQuantiles(const NoiseLayer& layer, double radiusM, std:
 // Fritsch–Carlson slopes, zero at both ends so that the curve meets its constant ends smoothly.
 void curveKnots(std::span<const CurvePoint> points, gpu::vec4* knots);
 
+// The index of the earlier layer that layer l's mask names. Throws planet::Error when none does.
+size_t maskIndex(const PlanetDescription& planet, size_t l);
+
 // Bounds of a layer's mask factor (1 without a mask) and of its value (its curve's largest |y|,
 // else 2 for the noise, times the mask's bound): what the height bounds assume a layer can add.
 double layerMaskBound(const PlanetDescription& planet, size_t l);
