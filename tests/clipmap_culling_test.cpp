@@ -153,6 +153,18 @@ TEST(ClipmapCulling, TrianglesComeNearToFar) {
     for (size_t t = 1; t < result.indices.size() / 3; ++t)
       ASSERT_LE(innermost(t), innermost(t - 1)) << "triangle " << t << " is nearer than the one before";
     EXPECT_EQ(innermost(result.indices.size() / 3 - 1), 41u) << "the last band is the outermost, 40..41";
+    // Each band's run starts where bandFirstIndex says and holds that band's triangles only (the
+    // terrain pass draws runs of bands with pipelines of their own).
+    ASSERT_EQ(result.bandFirstIndex.size(), 260u);
+    EXPECT_EQ(result.bandFirstIndex.back(), 3 * n) << "band 299 follows the fan";
+    for (uint32_t b = 40; b < 300; ++b) {
+      const size_t begin = result.bandFirstIndex[b - 40];
+      const size_t end = b > 40 ? result.bandFirstIndex[b - 41] : result.indices.size();
+      ASSERT_EQ(begin % 3, 0u);
+      ASSERT_LE(begin, end);
+      for (size_t t = begin / 3; t < end / 3; ++t)
+        ASSERT_EQ(innermost(t), b + 1) << "triangle " << t << " of band " << b;
+    }
   }
 }
 

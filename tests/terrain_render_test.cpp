@@ -239,12 +239,23 @@ TEST(TerrainShading, NightAndFootprintBoundsFollowTheView) {
   EXPECT_FALSE(reliefInView(radius, 600.0, 0.12, 0.0, 7200.0, fov, 360, 512));
   EXPECT_TRUE(reliefInView(radius, 600.0, 0.16, 0.0, 7200.0, fov, 360, 512));
   EXPECT_TRUE(reliefInView(radius, 600.0, 0.09, 0.0, 7200.0, fov, 90, 512)) << "at 160x90 pixels are 4x wider";
+  // Per band (TerrainPass::drawsFor). The footprint beyond the pole is smallestFootprintM's; 2 m up
+  // among 9 km peaks, ground 1 km away (θ = 1 km / radius) may stand at the camera's height, so
+  // its footprint is 1 km times the corner pixel's angle.
+  EXPECT_NEAR(footprintBeyondM(radius, 10000.0, 0.0, 0.0, 9000.0, fov, 160, 90), 1000.0 * 5.375e-3, 1e-3);
+  EXPECT_NEAR(footprintBeyondM(radius, 2.0, 1000.0 / radius, 0.0, 9000.0, fov, 160, 90), 1000.0 * 5.375e-3, 2e-3);
+  EXPECT_LT(footprintBeyondM(radius, 2.0, 500.0 / radius, 0.0, 9000.0, fov, 160, 90), 2.7);
+  // The sun 35° up at the centre: the terminator is 55° away, and the 1° margin reaches it from 34°.
+  EXPECT_FALSE(nightWithin(up, sunAt(35.0), 33.5 * std::numbers::pi / 180.0));
+  EXPECT_TRUE(nightWithin(up, sunAt(35.0), 34.5 * std::numbers::pi / 180.0));
   EXPECT_FALSE(reliefInView(radius, 4.0e5, 1.0, 0.0, 7200.0, fov, 360, kReliefStandInSize)) << "a stand-in";
 }
 
 // Leaving out what a view cannot show leaves the picture bit for bit as it was: each view drawn
 // with the frame's shading and with every part the planet has, from the sky (night in view or
-// not) to 2 m. And the views do leave parts out (else the test would prove nothing).
+// not) to 2 m. And the views do leave parts out (else the test would prove nothing): whole frames,
+// and runs of bands within a frame (TerrainPass::drawsFor): the detail octaves only in the bands
+// near the camera, the city lights only in the bands that reach the night.
 TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
   const PlanetDescription planet = resolvePreset("earth");
   RenderSettings all = smallSettings(true);
@@ -252,23 +263,42 @@ TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
   Renderer perFrame(context(), planet, smallSettings(true));
   Renderer everything(context(), planet, all);
   const double peaks = perFrame.terrain().maxTerrainHeightM();
+  enum class Split { None, NearDetail, FarLights, FarRelief };
   struct Case {
     CameraPose camera;
     SunPose sun;
     bool lights, detail;
+    Split split;
   };
   const Case cases[] = {
-      {{kLat, kLon, 4.0e5, 0.0, -90.0}, {135.0, 35.0}, false, false},   // day from 400 km
-      {{kLat, kLon, 1.2e7, 0.0, -90.0}, {135.0, -30.0}, true, false},   // night in view from orbit
-      {{kLat, kLon, peaks + 600.0, 60.0, -20.0}, {135.0, 35.0}, false, false},  // just too high for the detail
-      {{kLat, kLon, 2.0, 60.0, -20.0}, {135.0, 35.0}, false, true}};            // 2 m above the ground
+      {{kLat, kLon, 4.0e5, 0.0, -90.0}, {135.0, 35.0}, false, false, Split::None},  // day from 400 km
+      {{kLat, kLon, 1.2e7, 0.0, -90.0}, {135.0, -30.0}, true, false, Split::None},  // night below, from orbit
+      // Day below, the terminator toward the limb: the outer bands only take the lights.
+      {{kLat, kLon, 1.2e7, 0.0, -90.0}, {135.0, 35.0}, true, false, Split::FarLights},
+      // Just too high for the detail; the relief cube only in the far bands.
+      {{kLat, kLon, peaks + 600.0, 60.0, -20.0}, {135.0, 35.0}, false, false, Split::FarRelief},
+      // 2 m above the ground: the bands within ~400 m only take the detail.
+      {{kLat, kLon, 2.0, 60.0, -20.0}, {135.0, 35.0}, false, true, Split::NearDetail}};
   for (const Case& c : cases) {
     SCOPED_TRACE("altitude " + std::to_string(c.camera.altitudeM));
     const RenderResult shaded = perFrame.render(c.camera, c.sun);
     const RenderResult reference = everything.render(c.camera, c.sun);
-    EXPECT_EQ(perFrame.terrain().frame().shading.lights, c.lights);
-    EXPECT_EQ(perFrame.terrain().frame().shading.groundDetail, c.detail);
+    const TerrainFrameInfo& frame = perFrame.terrain().frame();
+    EXPECT_EQ(frame.shading.lights, c.lights);
+    EXPECT_EQ(frame.shading.groundDetail, c.detail);
     EXPECT_TRUE(everything.terrain().frame().shading.lights && everything.terrain().frame().shading.groundDetail);
+    ASSERT_EQ(everything.terrain().frame().draws.size(), 1u) << "one draw with everything";
+    ASSERT_FALSE(frame.draws.empty());
+    const TerrainShading& nearest = frame.draws.front().shading;
+    const TerrainShading& farthest = frame.draws.back().shading;
+    for (const TerrainDraw& draw : frame.draws)
+      EXPECT_EQ(draw.shading.key() & ~frame.shading.key(), 0u) << "a draw has a part the frame cannot show";
+    switch (c.split) {
+      case Split::None: EXPECT_EQ(frame.draws.size(), 1u); break;
+      case Split::NearDetail: EXPECT_TRUE(nearest.groundDetail && !farthest.groundDetail); break;
+      case Split::FarLights: EXPECT_TRUE(!nearest.lights && farthest.lights); break;
+      case Split::FarRelief: EXPECT_TRUE(!nearest.relief && farthest.relief); break;
+    }
     EXPECT_EQ(shaded.image.pixels, reference.image.pixels);
   }
 }

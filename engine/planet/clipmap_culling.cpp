@@ -56,6 +56,7 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
   };
 
   ClipmapCull result;
+  result.bandFirstIndex.resize(lastRing - firstRing);
   // needed[ring][i]: vertex i of the ring is used by a kept triangle.
   std::vector<std::vector<bool>> needed(lastRing - firstRing + 1, std::vector<bool>(n, false));
   const double phiStep = 2.0 * 3.14159265358979323846 / double(n);
@@ -98,7 +99,8 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
       keptSectors.push_back(s);
     }
     // The kept cells' quads band by band, the inner band first.
-    for (uint32_t b = bandEnd; b-- > band;)
+    for (uint32_t b = bandEnd; b-- > band;) {
+      result.bandFirstIndex[b - firstRing] = uint32_t(result.indices.size());
       for (uint32_t s : keptSectors) {
         const uint32_t q0 = sectorStart(s), q1 = sectorStart(s + 1);
         const size_t base = size_t(6) * n * b;
@@ -109,6 +111,7 @@ ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t la
           needed[b + 1 - firstRing][i % n] = true;
         }
       }
+    }
   }
   // The needed vertices as runs of consecutive indices, cut into chunks.
   for (uint32_t ring = firstRing; ring <= lastRing; ++ring) {

@@ -50,6 +50,10 @@ struct ClipmapCull {
     uint32_t count = 0;  // 1 .. chunkSize
   };
   std::vector<Chunk> chunks;  // the vertices the triangles use, ring by ring, the pole last
+  // Where band firstRing + k's kept quads start in `indices` (at k), so that a draw can take a
+  // run of bands: band b's quads end where band b − 1's (the next outward) start, and band
+  // firstRing's at the end; the pole fan ends where band lastRing − 1's start.
+  std::vector<uint32_t> bandFirstIndex;
   uint32_t cellsKept = 0;
   uint32_t cellsTotal = 0;
   uint32_t vertexCount() const;

@@ -123,25 +123,51 @@ bool nightInView(const glm::dvec3& cameraPlanet, const glm::dvec3& sunDirection,
                  double maxTerrainHeightM, double lowestSurfaceM) {
   const double distance = glm::length(cameraPlanet);
   if (!(distance > 0.0)) return true;
-  const glm::dvec3 nadir = cameraPlanet / distance;
   const double cap = horizonTheta(radiusM, distance - radiusM, maxTerrainHeightM, lowestSurfaceM);
-  const double sunFromNadir = std::acos(std::clamp(glm::dot(nadir, sunDirection), -1.0, 1.0));
+  return nightWithin(cameraPlanet / distance, sunDirection, cap);
+}
+
+bool nightWithin(const glm::dvec3& centre, const glm::dvec3& sunDirection, double capTheta) {
+  const double sunFromCentre = std::acos(std::clamp(glm::dot(centre, sunDirection), -1.0, 1.0));
   // The interpolated vertex normals and float directions stray far less than the margin.
   constexpr double kMarginRad = std::numbers::pi / 180.0;
-  return sunFromNadir + cap > 0.5 * std::numbers::pi - kMarginRad;
+  return sunFromCentre + capTheta > 0.5 * std::numbers::pi - kMarginRad;
 }
+
+namespace {
+
+// The smallest angle a pixel spans (radians). A pixel at distance rho from the image's centre
+// (focal length f, in pixels) spans f / (f² + rho²) radians across the radius and
+// 1 / sqrt(f² + rho²) along it: the least, at the corners, the former. A derivative over one
+// pixel on the ground is at least the distance times that (the ground tilted away only
+// lengthens it).
+double smallestPixelAngle(double fovYRad, uint32_t width, uint32_t height) {
+  const double f = 0.5 * double(height) / std::tan(0.5 * fovYRad);
+  const double rho2 = 0.25 * (double(width) * double(width) + double(height) * double(height));
+  return f / (f * f + rho2);
+}
+
+}  // namespace
 
 double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double maxTerrainHeightM, double fovYRad,
                           uint32_t width, uint32_t height) {
   const double nearest = glm::length(cameraPlanet) - (radiusM + std::max(maxTerrainHeightM, 0.0));
   if (!(nearest > 0.0) || width == 0 || height == 0) return 0.0;
-  // A pixel at distance rho from the image's centre (focal length f, in pixels) spans
-  // f / (f² + rho²) radians across the radius and 1 / sqrt(f² + rho²) along it: the least, at
-  // the corners, the former. A derivative over one pixel on the ground is at least the distance
-  // times that (the ground tilted away only lengthens it).
-  const double f = 0.5 * double(height) / std::tan(0.5 * fovYRad);
-  const double rho2 = 0.25 * (double(width) * double(width) + double(height) * double(height));
-  return nearest * f / (f * f + rho2);
+  return nearest * smallestPixelAngle(fovYRad, width, height);
+}
+
+double footprintBeyondM(double radiusM, double altitudeM, double innerTheta, double lowestSurfaceM,
+                        double maxTerrainHeightM, double fovYRad, uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0) return 0.0;
+  // The distance from the camera (on the pole's axis, at radius c) to the point at angle θ and
+  // radius r: d² = r² + c² − 2 r c cos θ, least at r = c cos θ (clamped to the ground's radii)
+  // and growing with θ.
+  const double camera = radiusM + altitudeM;
+  const double c = std::cos(innerTheta);
+  const double r =
+      std::clamp(camera * c, radiusM + lowestSurfaceM, radiusM + std::max(maxTerrainHeightM, lowestSurfaceM));
+  const double nearest = std::sqrt(std::max(r * r + camera * camera - 2.0 * r * camera * c, 0.0));
+  return nearest * smallestPixelAngle(fovYRad, width, height);
 }
 
 bool reliefInView(double radiusM, double altitudeM, double outerTheta, double lowestSurfaceM, double maxTerrainHeightM,
@@ -382,6 +408,49 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
   return shading;
 }
 
+std::vector<TerrainDraw> TerrainPass::drawsFor(const TerrainView& view, const TerrainShading& shading,
+                                               bool split) const {
+  const ClipmapCull& cull = lod_->cull;
+  const uint32_t total = uint32_t(cull.indices.size());
+  std::vector<TerrainDraw> draws;
+  const auto add = [&](uint32_t begin, uint32_t end, const TerrainShading& run) {
+    if (end <= begin) return;
+    if (!draws.empty() && draws.back().shading.key() == run.key())
+      draws.back().indexCount += end - begin;
+    else
+      draws.push_back({begin, end - begin, run});
+  };
+  if (!split) {
+    add(0, total, shading);
+    return draws;
+  }
+  // As shadingFor, per band: the detail octaves where its nearest ground can have a pixel fine
+  // enough (the bands near the camera), the relief cube where its farthest can have one wide
+  // enough (the far ones), the city lights where its outer ring reaches the night (from orbit,
+  // the bands toward the terminator).
+  const double radius = planet_.radiusM;
+  const double altitude = lod_->orientation.altitudeM;
+  const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
+  const uint32_t first = lod_->rings.firstRing, last = lod_->rings.lastRing;
+  // k = last is the pole fan (θ from 0 to ring last's), k < last band k (between rings k + 1 and k).
+  for (uint32_t k = last + 1; k-- > first;) {
+    const uint32_t begin = k == last ? 0u : cull.bandFirstIndex[k - first];
+    const uint32_t end = k > first ? cull.bandFirstIndex[k - 1 - first] : total;
+    const double inner = k == last ? 0.0 : mesh_.ringTheta(k + 1);
+    TerrainShading run = shading;
+    run.groundDetail =
+        shading.groundDetail && 0.9 * footprintBeyondM(radius, altitude, inner, lowestSurfaceM_, maxTerrainHeightM_,
+                                                       view.fovYRad, view.width, view.height) <
+                                    0.5 * longestDetailM;
+    run.lights =
+        shading.lights && nightWithin(lod_->orientation.nadirDirection(), view.sunDirection, mesh_.ringTheta(k));
+    run.relief = shading.relief && reliefInView(radius, altitude, mesh_.ringTheta(k), lowestSurfaceM_,
+                                                maxTerrainHeightM_, view.fovYRad, view.height, relief_->size());
+    add(begin, end, run);
+  }
+  return draws;
+}
+
 void TerrainPass::prepareShadingPipelines() {
   if (!wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
   for (bool lights : {false, lightsDrawn()})
@@ -503,7 +572,6 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   const glm::dmat4 projection =
       reversedZPerspective(view.fovYRad, double(view.width) / double(view.height), info.nearPlaneM);
   info.shading = shadingFor(view, info.lodFrozen);
-  if (!info.wireframe) buildFillPipeline(info.shading);
   frame_ = info;
   // This frame's share of the patch levels' work (all of it without a budget).
   patchPlan_ = patches ? patches_->plan(info.patchLayout, settings_.patchTexelsPerFrame) : PatchTextures::Plan{};
@@ -512,6 +580,10 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   // A frozen mesh keeps the cells its own frame kept, so that it can be looked at from elsewhere.
   if (!info.lodFrozen) lod.cull = cullFor(projection * viewM, cameraZ, settings_.frustumCulling);
   const uint64_t vertices = writeCulledMesh(lod.cull);
+  if (!info.wireframe) {
+    frame_.draws = drawsFor(view, info.shading, settings_.shadingPerFrame && !info.lodFrozen);
+    for (const TerrainDraw& draw : frame_.draws) buildFillPipeline(draw.shading);
+  }
 
   // What the heights depend on: unchanged while frozen (unless a toggle changes the patch layout).
   pending_ = ComputeKey{};
@@ -770,13 +842,21 @@ void TerrainPass::bindDrawState(VkCommandBuffer cmd) const {
 
 void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "terrain");
-  const vk::Owned<VkPipeline>& draw = frame_.wireframe ? wireframePipeline_ : fillPipelines_[frame_.shading.key()];
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw.get());
-  bindDrawState(cmd);
   // The culled mesh, near to far (clipmap_culling.h): the fan that closes the innermost drawn ring
   // at the pole, then the kept quads of the drawn bands inside out, so that the early depth test
   // of planets without a sea (terrain.frag) skips most hidden ground before shading it.
-  vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
+  if (frame_.wireframe) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframePipeline_.get());
+    bindDrawState(cmd);
+    vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
+  }
+  // Each run of bands with its own fill pipeline (the bound state stays: one layout).
+  for (size_t k = 0; k < frame_.draws.size() && !frame_.wireframe; ++k) {
+    const TerrainDraw& draw = frame_.draws[k];
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fillPipelines_[draw.shading.key()].get());
+    if (k == 0) bindDrawState(cmd);
+    vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
+  }
   if (timer) timer->end(cmd);
 }
 

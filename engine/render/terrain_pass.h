@@ -108,16 +108,34 @@ struct TerrainShading {
   static constexpr uint32_t kKeys = 16;
 };
 
+// One fill draw of a frame: a run of the culled mesh's triangle list (ClipmapCull::indices, near
+// to far) and the parts of the ground's shading its bands can show. A frame's bands near the
+// camera take the detail octaves and its far ones the relief cube, never both at one pixel
+// (TerrainPass::drawsFor): each run is drawn with a fill pipeline that has only its own parts.
+struct TerrainDraw {
+  uint32_t firstIndex = 0;
+  uint32_t indexCount = 0;
+  TerrainShading shading;
+};
+
 // Whether any ground the mesh can show (the horizon cut's cap around the camera's nadir,
 // clipmap_orientation.h) has the sun below its horizon, with a 1° margin. The planet frame's
 // camera position and unit sun direction.
 bool nightInView(const glm::dvec3& cameraPlanet, const glm::dvec3& sunDirection, double radiusM,
                  double maxTerrainHeightM, double lowestSurfaceM);
+// Whether any ground within capTheta of the unit direction `centre` (planet frame) has the sun
+// below its horizon, with a 1° margin: nightInView's test for the mesh's cap, or a band of it.
+bool nightWithin(const glm::dvec3& centre, const glm::dvec3& sunDirection, double capTheta);
 // A lower bound on the ground footprint of any pixel (m): the distance to the nearest ground the
 // highest terrain allows, times the smallest angle a pixel spans (at the image's corners). 0 when
 // the camera is below the highest terrain.
 double smallestFootprintM(const glm::dvec3& cameraPlanet, double radiusM, double maxTerrainHeightM, double fovYRad,
                           uint32_t width, uint32_t height);
+// The same bound for the pixels that show ground at least innerTheta from the mesh's pole (the
+// camera altitudeM above it; the ground between lowestSurfaceM and maxTerrainHeightM): the
+// nearest such point's distance times the smallest angle a pixel spans.
+double footprintBeyondM(double radiusM, double altitudeM, double innerTheta, double lowestSurfaceM,
+                        double maxTerrainHeightM, double fovYRad, uint32_t width, uint32_t height);
 // Whether some pixel can take the relief cube (terrain_surface.glsl: its weight needs a pixel's
 // extent across the line of sight, distance × angle / radius, above an eighth of a texel's angle
 // 2 / reliefSize). A pixel spans at most 1 / f radians (f: the focal length in pixels, at the
@@ -150,7 +168,8 @@ struct TerrainFrameInfo {
   bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
   bool wireframe = false;   // drawn as triangle edges
   bool waterDrawn = false;  // the water sphere is drawn
-  TerrainShading shading;   // the parts of the ground's shading drawn (the fill pipeline's)
+  TerrainShading shading;   // the parts of the ground's shading the view can show (each draw's are among them)
+  std::vector<TerrainDraw> draws;  // the fill draws, near to far (none in wireframe)
   // The sun the shaders got: irradiance at the top of the atmosphere (gpu::kSunIrradiance units)
   // and the disc's angular radius.
   double sunIrradiance = 0.0;
@@ -289,6 +308,9 @@ class TerrainPass {
   // The parts of the ground's shading this view can show (all the planet has when
   // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
   TerrainShading shadingFor(const TerrainView& view, bool lodFrozen) const;
+  // The frame's fill draws over the culled mesh of lod_: the runs of bands whose shading (within
+  // `shading`, the frame's) is the same; one draw of everything with `shading` unless `split`.
+  std::vector<TerrainDraw> drawsFor(const TerrainView& view, const TerrainShading& shading, bool split) const;
   // Binds what both draws read (descriptor set, index buffer, the vertex-shader source's push
   // constants) with `layout`'s pipeline already bound.
   void bindDrawState(VkCommandBuffer cmd) const;
