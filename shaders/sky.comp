@@ -120,7 +120,9 @@ float skyEclipse(vec3 dir, vec2 stretch, bool fromInside) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  // The dispatch covers the pixels where the air or the sun can show (sky.region); elsewhere a ray
+  // meets no air, and the pixel keeps what was drawn.
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(sky.region.xy);
   if (pixel.x >= int(sky.extent.x) || pixel.y >= int(sky.extent.y)) return;
   vec4 stored = imageLoad(color, pixel);
   vec3 surface = stored.rgb;

@@ -22,7 +22,7 @@ layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2
 const float kOneSurfaceRatio = 1.05f;
 
 void main() {
-  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 cell = ivec2(gl_GlobalInvocationID.xy) + ivec2(sky.region.zw);  // the samples the compose reads
   int scale = int(sky.cloudShape.w);
   if (any(greaterThanEqual(cell * scale, ivec2(sky.extent.xy)))) return;
   // The depth at the block's centre. Reversed Z stores 1 / view distance, which is affine across

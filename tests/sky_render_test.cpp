@@ -409,6 +409,53 @@ TEST_F(SkyRender, HalfResolutionCloudsMatchFullResolutionAndStayOffSilhouettes) 
   }
 }
 
+// The cloud pass and the compose run only where the air or the sun's disc can show
+// (SkySettings::regions): the pictures are those of passes over the whole image, bit for bit,
+// and from orbit the regions leave most of the image out. Earth from 20,000 km, from 6,300 km
+// with the limb and the sun in view, from the ground (everything); the airless Moon with the sun
+// in view (its disc only).
+TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
+  struct View {
+    const char* preset;
+    CameraPose camera;
+    SunPose sun;
+    double mostShare;  // of the image the compose may cover
+    double leastShare;
+  };
+  const View views[] = {
+      {"earth", {20, -30, 2.0e7, 0, -90}, {135, 35}, 0.3, 0.05},
+      {"earth", {20, -30, 6.3e6, 135, -45}, {135, 35}, 0.9, 0.2},
+      {"earth", {20, -30, 2.0, 135, 10}, {135, 35}, 1.0, 1.0},
+      {"moon", {10, 20, 3.0e6, 135, 20}, {135, 35}, 0.02, 0.0001},
+  };
+  RenderSettings settings = skySettings();
+  settings.width = 192;
+  settings.height = 108;
+  RenderSettings wholeSettings = settings;
+  wholeSettings.sky.regions = false;
+  for (const View& view : views) {
+    SCOPED_TRACE(std::string(view.preset) + " from " + std::to_string(view.camera.altitudeM) + " m");
+    const PlanetDescription planet = resolvePreset(view.preset);
+    Renderer regions(context(), planet, settings);
+    Renderer whole(context(), planet, wholeSettings);
+    const Rgba8Image a = regions.render(view.camera, view.sun).image;
+    const Rgba8Image b = whole.render(view.camera, view.sun).image;
+    EXPECT_EQ(a.pixels, b.pixels);
+    const PixelRect& compose = regions.sky().composeRegion();
+    const double share = double(compose.width()) * compose.height() / (double(settings.width) * settings.height);
+    std::printf("sky regions, %s from %.0f m: the compose covers %.1f %% of the image\n", view.preset,
+                view.camera.altitudeM, 100.0 * share);
+    EXPECT_LE(share, view.mostShare);
+    EXPECT_GE(share, view.leastShare);
+    EXPECT_EQ(whole.sky().composeRegion().width(), settings.width);
+    if (a.pixels != b.pixels) {
+      const std::string name = testOutputDir().string() + "/sky_regions_" + std::to_string(&view - views);
+      writePng(name + ".regions.png", a);
+      writePng(name + ".whole.png", b);
+    }
+  }
+}
+
 // The sky-view table the GPU builds each frame against the double CPU reference of the same
 // source (skyViewTable): from the ground, from 10 km at twilight and from 400 km. Half the
 // texels within 0.1 % of the brightest (half floats hold 3 digits; the GPU marches in float), 99 %

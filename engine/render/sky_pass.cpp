@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 #include <glm/gtc/packing.hpp>
 
@@ -75,6 +76,57 @@ uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAng
   // A cover texel straight below spans coverTexelM / (aboveCloudsM · pixelAngleRad) pixels.
   if (aboveCloudsM <= 0.0) return 2;
   return coverTexelM >= kHalfResolutionTexelPixels * aboveCloudsM * pixelAngleRad ? 2 : 1;
+}
+
+PixelRect unite(const PixelRect& a, const PixelRect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+PixelRect coneScreenRect(const glm::dmat4& viewProjection, const glm::dvec3& axis, double halfAngleRad, uint32_t width,
+                         uint32_t height) {
+  const PixelRect whole{0, 0, width, height};
+  if (!(halfAngleRad < 0.5 * std::numbers::pi - 1e-6)) return whole;
+  // The polygon of kSides sides around the cone's circle at unit distance along the axis (its
+  // vertices 1 / cos(π / kSides) out, so the circle is inscribed), in clip coordinates (linear in
+  // the point), cut to the part in front of the camera (w ≥ kFront: what the cut leaves out
+  // projects far outside any image). Projected from the camera, that convex polygon holds the
+  // projection of every ray of the cone in front of the camera, and its bounding box is its
+  // vertices'.
+  constexpr int kSides = 32;
+  constexpr double kFront = 1e-6;
+  const glm::dvec3 u =
+      glm::normalize(glm::cross(axis, std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+  const glm::dvec3 v = glm::cross(axis, u);
+  const double reach = std::tan(halfAngleRad) / std::cos(std::numbers::pi / kSides);
+  std::vector<glm::dvec4> polygon;
+  for (int k = 0; k < kSides; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / kSides;
+    polygon.push_back(viewProjection * glm::dvec4(axis + reach * (std::cos(t) * u + std::sin(t) * v), 1.0));
+  }
+  std::vector<glm::dvec4> front;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const glm::dvec4& a = polygon[k];
+    const glm::dvec4& b = polygon[(k + 1) % polygon.size()];
+    if (a.w >= kFront) front.push_back(a);
+    if ((a.w >= kFront) != (b.w >= kFront)) front.push_back(a + (b - a) * ((kFront - a.w) / (b.w - a.w)));
+  }
+  if (front.empty()) return {};
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const glm::dvec4& clip : front) {
+    // As the sky passes map pixels to clip space (sky_compose.glsl, viewRay): ndc = 2 p / extent − 1.
+    const double px = 0.5 * (clip.x / clip.w + 1.0) * width, py = 0.5 * (clip.y / clip.w + 1.0) * height;
+    x0 = std::min(x0, px);
+    y0 = std::min(y0, py);
+    x1 = std::max(x1, px);
+    y1 = std::max(y1, py);
+  }
+  const auto clampTo = [](double value, uint32_t size) { return uint32_t(std::clamp(value, 0.0, double(size))); };
+  constexpr double kMarginPixels = 2.0;
+  const PixelRect rect{clampTo(std::floor(x0 - kMarginPixels), width), clampTo(std::floor(y0 - kMarginPixels), height),
+                       clampTo(std::ceil(x1 + kMarginPixels), width), clampTo(std::ceil(y1 + kMarginPixels), height)};
+  return rect.empty() ? PixelRect{} : rect;
 }
 
 std::string_view skyModeName(SkyMode mode) { return mode == SkyMode::Reference ? "reference" : "tables"; }
@@ -238,6 +290,39 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
                     : cloudPassScale(view.altitudeM - planet_.clouds.topM, double(u.cloudShape.x) * planet_.radiusM,
                                      view.pixelAngleRad);
   u.cloudShape.w = float(cloudScale_);
+  // Where the compose runs: the pixels whose rays can meet the air (from above its top, the cone
+  // it fills around the nadir; from inside, all) and the sun's disc (its smooth edge reaches
+  // 1.2 of its radius). Elsewhere a ray meets no air and no cloud, and the pixel keeps what was
+  // drawn (the stars, a scene's other bodies): from orbit that is most of the image.
+  PixelRect region;
+  if (u.atmosphere.radii.w > 0.5f) {
+    const double top = planet_.radiusM + planet_.atmosphere.heightM, distance = planet_.radiusM + view.altitudeM;
+    region = distance > top ? coneScreenRect(view.viewProjection, glm::dvec3(0.0, 0.0, -1.0), std::asin(top / distance),
+                                             width, height)
+                            : PixelRect{0, 0, width, height};
+  }
+  if (!settings_.regions) region = PixelRect{0, 0, width, height};
+  if (view.drawSun)
+    region = unite(region,
+                   coneScreenRect(view.viewProjection, view.sunLocal, 1.5 * view.sunAngularRadiusRad, width, height));
+  // The dispatch's whole workgroups run the compose (up to the image's edge): all of them read
+  // the cloud samples below.
+  const uint32_t group = gpu::kSkyWorkgroupSize;
+  if (!region.empty()) {
+    region.x1 = std::min(region.x0 + (region.width() + group - 1) / group * group, width);
+    region.y1 = std::min(region.y0 + (region.height() + group - 1) / group * group, height);
+  }
+  composeRegion_ = region;
+  // The cloud pass's samples that the compose's pixels read (each pixel the four around it).
+  const uint32_t samplesX = (width + cloudScale_ - 1) / cloudScale_,
+                 samplesY = (height + cloudScale_ - 1) / cloudScale_;
+  cloudRegion_ = region.empty() ? PixelRect{}
+                                : PixelRect{region.x0 / cloudScale_ - std::min(region.x0 / cloudScale_, 1u),
+                                            region.y0 / cloudScale_ - std::min(region.y0 / cloudScale_, 1u),
+                                            std::min((region.x1 + cloudScale_ - 1) / cloudScale_ + 1, samplesX),
+                                            std::min((region.y1 + cloudScale_ - 1) / cloudScale_ + 1, samplesY)};
+  u.region =
+      glm::vec4(float(composeRegion_.x0), float(composeRegion_.y0), float(cloudRegion_.x0), float(cloudRegion_.y0));
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
@@ -308,9 +393,8 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (timer) timer->next(cmd, "clouds");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
-    const uint32_t samplesX = (width_ + cloudScale_ - 1) / cloudScale_,
-                   samplesY = (height_ + cloudScale_ - 1) / cloudScale_;
-    vkCmdDispatch(cmd, (samplesX + group - 1) / group, (samplesY + group - 1) / group, 1);
+    // Only the samples the compose reads (prepare); none when nothing shows the air.
+    vkCmdDispatch(cmd, (cloudRegion_.width() + group - 1) / group, (cloudRegion_.height() + group - 1) / group, 1);
     // The compose reads what the cloud pass wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
@@ -318,7 +402,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                     tables ? tablesCompose_[clouds].get() : referenceCompose_[clouds].get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
-  vkCmdDispatch(cmd, (width_ + group - 1) / group, (height_ + group - 1) / group, 1);
+  vkCmdDispatch(cmd, (composeRegion_.width() + group - 1) / group, (composeRegion_.height() + group - 1) / group, 1);
   if (timer) timer->end(cmd);
 }
 

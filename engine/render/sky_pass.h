@@ -50,6 +50,23 @@ SkyMode parseSkyMode(std::string_view name);
 constexpr double kHalfResolutionTexelPixels = 16.0;
 uint32_t cloudPassScale(double aboveCloudsM, double coverTexelM, double pixelAngleRad);
 
+// A rectangle of an image's pixels (or the cloud pass's samples), [x0, x1) × [y0, y1).
+struct PixelRect {
+  uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  uint32_t width() const { return empty() ? 0 : x1 - x0; }
+  uint32_t height() const { return empty() ? 0 : y1 - y0; }
+};
+// The smallest rectangle that holds both (an empty one holds nothing).
+PixelRect unite(const PixelRect& a, const PixelRect& b);
+// The pixels of a width × height image that can show a direction within halfAngleRad of the unit
+// `axis` (the camera at the origin, seen through viewProjection), with 2 pixels of margin: the
+// bounding box of a polygon circumscribing the cone's circle, cut to the part in front of the
+// camera and projected. Empty when the cone lies behind the camera or outside the image; the
+// whole image when it is 90° wide or wider.
+PixelRect coneScreenRect(const glm::dmat4& viewProjection, const glm::dvec3& axis, double halfAngleRad, uint32_t width,
+                         uint32_t height);
+
 struct SkySettings {
   SkyMode mode = SkyMode::Tables;
   uint32_t viewSamples = 64;  // reference mode: samples along each pixel's ray (split over cloud crossings)
@@ -58,6 +75,10 @@ struct SkySettings {
   // The cloud pass's pixels per sample along each axis: 0 picks 2 or 1 by the view
   // (cloudPassScale); 1 or 2 forces it (the tests hold the two against each other).
   uint32_t cloudScale = 0;
+  // Run the cloud pass and the compose only over the pixels where the air or the sun's disc can
+  // show (SkyPass::composeRegion); off, over the whole image (the tests hold the two against each
+  // other: the pictures are the same).
+  bool regions = true;
 };
 // Throws planet::Error naming the first bad field: samples outside 2..256, a non-positive
 // exposure, a cloud scale past 2.
@@ -138,6 +159,9 @@ class SkyPass {
   static double skyViewAltitudeToleranceM(double radiusM, double altitudeM);
   // Whether the last prepared frame builds the sky-view table (else it reads the last one built).
   bool skyViewBuilt() const { return buildSkyView_; }
+  // The last prepared frame's compose pixels and cloud pass samples (SkySettings::regions).
+  const PixelRect& composeRegion() const { return composeRegion_; }
+  const PixelRect& cloudRegion() const { return cloudRegion_; }
 
   // Builds now the pipelines that a later change of settings (the clouds toggled) would build
   // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for
@@ -163,6 +187,9 @@ class SkyPass {
   uint32_t slot_ = 0;  // of the last prepare()
   uint32_t width_ = 0, height_ = 0;
   uint32_t cloudScale_ = 2;  // of the last prepare() (cloudPassScale)
+  // Of the last prepare(): the compose's pixels (where the air or the sun's disc can show) and
+  // the cloud pass's samples (those the compose reads there).
+  PixelRect composeRegion_, cloudRegion_;
   // In the order of creation (destroyed in reverse).
   vk::Owned<vk::Buffer> uniforms_[vk::kFramesInFlight];  // per frame slot, host-visible
   vk::Owned<VkSampler> depthSampler_;

@@ -114,12 +114,14 @@ struct SkyUniforms {
                  // atmosphere (each column's slices split its own stretch through the air evenly), else 0
                  // (slice k ends at distance y · ((k + 1) / kAerialSize)²); y: that farthest distance (m);
                  // z, w: unused
+  vec4 region;   // the passes' dispatches cover only where the air or the sun can show (SkyPass::prepare,
+                 // skyRegion): x, y: the compose's first pixel; z, w: the cloud pass's first sample
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[16];
   // The other bodies of a scene, which hide the sun from this one's air (common/eclipse.glsl).
   EclipseParams eclipse;
 };
-GPU_ASSERT_SIZE(SkyUniforms, 656 + 272)
+GPU_ASSERT_SIZE(SkyUniforms, 672 + 272)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
