@@ -159,9 +159,8 @@ class SkyPass {
   static double skyViewAltitudeToleranceM(double radiusM, double altitudeM);
   // Whether the last prepared frame builds the sky-view table (else it reads the last one built).
   bool skyViewBuilt() const { return buildSkyView_; }
-  // The last prepared frame's compose pixels and cloud pass samples (SkySettings::regions).
+  // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
-  const PixelRect& cloudRegion() const { return cloudRegion_; }
 
   // Builds now the pipelines that a later change of settings (the clouds toggled) would build
   // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for

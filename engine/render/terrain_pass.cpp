@@ -398,14 +398,18 @@ TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) 
   const double radius = planet_.radiusM;
   shading.lights =
       shading.lights && nightInView(camera, view.sunDirection, radius, maxTerrainHeightM_, lowestSurfaceM_);
-  // terrain_detail.glsl: octave i fades out where the footprint reaches half its wavelength; a
-  // tenth of margin for the derivatives' float error.
-  const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
-  shading.groundDetail = 0.9 * smallestFootprintM(camera, radius, maxTerrainHeightM_, view.fovYRad, view.width,
-                                                   view.height) < 0.5 * longestDetailM;
+  shading.groundDetail =
+      detailShows(smallestFootprintM(camera, radius, maxTerrainHeightM_, view.fovYRad, view.width, view.height));
   shading.relief = reliefInView(radius, lod_->orientation.altitudeM, mesh_.ringTheta(lod_->rings.firstRing),
                                 lowestSurfaceM_, maxTerrainHeightM_, view.fovYRad, view.height, relief_->size());
   return shading;
+}
+
+bool TerrainPass::detailShows(double footprintM) const {
+  // terrain_detail.glsl: octave i fades out where the footprint reaches half its wavelength; a
+  // tenth of margin for the derivatives' float error.
+  const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
+  return 0.9 * footprintM < 0.5 * longestDetailM;
 }
 
 std::vector<TerrainDraw> TerrainPass::drawsFor(const TerrainView& view, const TerrainShading& shading,
@@ -430,7 +434,6 @@ std::vector<TerrainDraw> TerrainPass::drawsFor(const TerrainView& view, const Te
   // the bands toward the terminator).
   const double radius = planet_.radiusM;
   const double altitude = lod_->orientation.altitudeM;
-  const double longestDetailM = 1.0 / groundOctaveFrequency(gpu::kGroundBiomeOctavesGpu, settings_.bandWavelengthM);
   const uint32_t first = lod_->rings.firstRing, last = lod_->rings.lastRing;
   // k = last is the pole fan (θ from 0 to ring last's), k < last band k (between rings k + 1 and k).
   for (uint32_t k = last + 1; k-- > first;) {
@@ -438,10 +441,9 @@ std::vector<TerrainDraw> TerrainPass::drawsFor(const TerrainView& view, const Te
     const uint32_t end = k > first ? cull.bandFirstIndex[k - 1 - first] : total;
     const double inner = k == last ? 0.0 : mesh_.ringTheta(k + 1);
     TerrainShading run = shading;
-    run.groundDetail =
-        shading.groundDetail && 0.9 * footprintBeyondM(radius, altitude, inner, lowestSurfaceM_, maxTerrainHeightM_,
-                                                       view.fovYRad, view.width, view.height) <
-                                    0.5 * longestDetailM;
+    run.groundDetail = shading.groundDetail &&
+                       detailShows(footprintBeyondM(radius, altitude, inner, lowestSurfaceM_, maxTerrainHeightM_,
+                                                    view.fovYRad, view.width, view.height));
     run.lights =
         shading.lights && nightWithin(lod_->orientation.nadirDirection(), view.sunDirection, mesh_.ringTheta(k));
     run.relief = shading.relief && reliefInView(radius, altitude, mesh_.ringTheta(k), lowestSurfaceM_,
@@ -849,13 +851,14 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframePipeline_.get());
     bindDrawState(cmd);
     vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
-  }
-  // Each run of bands with its own fill pipeline (the bound state stays: one layout).
-  for (size_t k = 0; k < frame_.draws.size() && !frame_.wireframe; ++k) {
-    const TerrainDraw& draw = frame_.draws[k];
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fillPipelines_[draw.shading.key()].get());
-    if (k == 0) bindDrawState(cmd);
-    vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
+  } else {
+    // Each run of bands with its own fill pipeline (the bound state stays: one layout).
+    for (size_t k = 0; k < frame_.draws.size(); ++k) {
+      const TerrainDraw& draw = frame_.draws[k];
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fillPipelines_[draw.shading.key()].get());
+      if (k == 0) bindDrawState(cmd);
+      vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
+    }
   }
   if (timer) timer->end(cmd);
 }

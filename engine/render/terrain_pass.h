@@ -308,6 +308,8 @@ class TerrainPass {
   // The parts of the ground's shading this view can show (all the planet has when
   // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
   TerrainShading shadingFor(const TerrainView& view, bool lodFrozen) const;
+  // Whether the detail octaves show at a pixel footprint (m) this small or smaller.
+  bool detailShows(double footprintM) const;
   // The frame's fill draws over the culled mesh of lod_: the runs of bands whose shading (within
   // `shading`, the frame's) is the same; one draw of everything with `shading` unless `split`.
   std::vector<TerrainDraw> drawsFor(const TerrainView& view, const TerrainShading& shading, bool split) const;
