@@ -182,7 +182,8 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"noise --type fbm --count 5", "1 2 3\n", "--count and --width apply to --type faults only, not to fbm"},
       {"noise --type mpd --levels 25", "1 2 3\n", "levels of mpd must be in 1..24, got 25"},
       {"noise --type mpd --octaves 5", "1 2 3\n", "--octaves does not apply to mpd or mpd_ico: give --levels"},
-      {"noise --type faults --multifractal", "1 2 3\n", "--levels and --multifractal apply to --type mpd and mpd_ico only"},
+      {"noise --type faults --multifractal", "1 2 3\n",
+       "--levels and --multifractal apply to --type mpd and mpd_ico only"},
       // planet validate
       {"validate --points 0", "", "--points must be in 1..10000000, got 0"},
       {"validate --points 1e12", "", "--points expects a whole number, got '1e12'"},
@@ -226,6 +227,9 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"bench --size 100000x100000", "", "--size 100000x100000 is outside 1x1 .. 8192x8192"},
       {"bench --size ''", "", "--size expects WIDTHxHEIGHT in pixels, got ''"},
       {"bench --size wide", "", "--size expects WIDTHxHEIGHT in pixels, got 'wide'"},
+      {"bench --mesh 16x", "", "--mesh expects auto or RINGSxVERTICES (e.g. 16x128), got '16x'"},
+      {"bench --mesh 300x128", "", "--mesh 300x128: rings per level must be in 1..256, got 300"},
+      {"bench --mesh 16x5000", "", "--mesh 16x5000: vertices per ring must be in 3..4096, got 5000"},
       {"bench --fov 180", "", "--fov must be in (0, 179] degrees, got 180"},
       {"bench --fov nan", "", "--fov must be in (0, 179] degrees, got nan"},
       {"bench --fov -1", "", "--fov must be in (0, 179] degrees, got -1"},
@@ -383,6 +387,10 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"render --size 1e3x1e3", "", "--size expects WIDTHxHEIGHT in pixels, got '1e3x1e3'"},
       {"render --size 99999999999999999999x2", "", "got '99999999999999999999x2'"},
       {"render --size '64\nx36'", "", "--size expects WIDTHxHEIGHT in pixels, got '64?x36'"},
+      {"render --mesh abc --out {out}/r.png", "", "--mesh expects auto or RINGSxVERTICES (e.g. 16x128), got 'abc'"},
+      {"render --mesh 0x128 --out {out}/r.png", "", "--mesh 0x128: rings per level must be in 1..256, got 0"},
+      {"render --mesh 16x2 --out {out}/r.png", "", "--mesh 16x2: vertices per ring must be in 3..4096, got 2"},
+      {"render --mesh ''", "", "--mesh expects auto or RINGSxVERTICES (e.g. 16x128), got ''"},
       {"render --camera 95,0,100", "", "camera latitude 95 is outside [-90, 90] degrees"},
       {"render --camera 1,2", "", "expected 3 or 5 numbers"},
       {"render --camera 1,2,x", "", "'x' is not a finite number"},
@@ -391,8 +399,10 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"render --camera 0,0,-1e12", "", "camera altitude -1000000000000 m is outside"},
       {"render --camera ''", "", "camera '': '' is not a finite number"},
       {"render --scene pluto", "", "unknown scene 'pluto' (built-in: system; or a FILE.toml)"},
-      {"render --scene system --camera Pluto:0,0,1", "", "scene 'Three worlds' has no body 'Pluto' (bodies: Giant, Terra, Moon)"},
-      {"render --scene system --camera 0,0,1", "", "--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '0,0,1'"},
+      {"render --scene system --camera Pluto:0,0,1", "",
+       "scene 'Three worlds' has no body 'Pluto' (bodies: Giant, Terra, Moon)"},
+      {"render --scene system --camera 0,0,1", "",
+       "--camera with --scene is BODY:LAT,LON,ALT[,HEADING,PITCH], got '0,0,1'"},
       {"render --scene system --camera Moon:95,0,1", "", "camera latitude 95 is outside [-90, 90] degrees"},
       {"render --scene system --camera Moon:0,0,1 --look-at Moon", "", "--look-at Moon names the camera's own body"},
       {"render --scene system --preset earth", "", "--preset and --scene exclude each other"},
@@ -434,7 +444,8 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"view --size ''", "", "--size expects WIDTHxHEIGHT in pixels, got ''"},
       {"view --vsync maybe", "", "--vsync must be 'on' or 'off', got 'maybe'"},
       {"view --scene system --travel Pluto", "", "scene 'Three worlds' has no body 'Pluto'"},
-      {"view --scene system --camera Moon:0,0,1 --travel Moon", "", "--travel Moon names the body the camera starts on"},
+      {"view --scene system --camera Moon:0,0,1 --travel Moon", "",
+       "--travel Moon names the body the camera starts on"},
       {"view --travel Terra", "", "--travel needs --scene (it names a body of the scene)"},
       {"view --scene system --path x.path", "", "--path does not apply to --scene"},
       {"view --scene system --time-scale -1", "", "--time-scale must be in [0, 1e6], got -1"},
@@ -597,6 +608,10 @@ TEST(Cli, RenderWritesAPngAndReportsTheFrame) {
   ASSERT_GT(bytes.size(), 8u);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
   EXPECT_NE(run.out.find("wrote " + png.string() + " (64x36"), std::string::npos) << run.out;
+  // The mesh follows the image (36 lines: the floors of meshForImage).
+  EXPECT_NE(run.out.find("mesh: 2 rings per level x 16 vertices per ring (auto for 36 lines at 60 degrees)\n"),
+            std::string::npos)
+      << run.out;
   EXPECT_NE(run.out.find("metres per vertex at the nadir: "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("triangles drawn: "), std::string::npos) << run.out;
   for (const char* pass : {"GPU time per pass: sky tables ", " heights ", " terrain ", " sky ", " tonemap "})

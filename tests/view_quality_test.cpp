@@ -1,5 +1,7 @@
 // Viewer quality levels (render/view_quality.h): names, the device default, and the render
 // settings each level gives for a window.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -36,6 +38,32 @@ TEST(ViewQuality, HighDrawsWhatPlanetRenderDraws) {
   EXPECT_EQ(high.terrain.patches, render.terrain.patches);
   EXPECT_EQ(high.terrain.patchSettings.resolution, render.terrain.patchSettings.resolution);
   EXPECT_EQ(high.sky.viewSamples, render.sky.viewSamples);
+}
+
+// The mesh for an image keeps the clipmap's triangles the same size on screen: rings per level
+// and vertices per ring follow the pixels per radian at the image's centre.
+TEST(MeshForImage, TrianglesKeepTheirSizeOnScreen) {
+  const ClipmapParams reference = TerrainSettings{}.mesh;  // 30 levels x 16 rings x 128 vertices
+  auto expectMesh = [&](uint32_t lines, double fovDeg, uint32_t rings, uint32_t numPhi) {
+    const ClipmapParams m = meshForImage(reference, lines, fovDeg);
+    EXPECT_EQ(m.levels, reference.levels) << lines << " lines at " << fovDeg;
+    EXPECT_EQ(m.ringsPerLevel, rings) << lines << " lines at " << fovDeg;
+    EXPECT_EQ(m.numPhi, numPhi) << lines << " lines at " << fovDeg;
+  };
+  expectMesh(540, 60.0, 16, 128);   // planet render's default size draws the mesh it always drew
+  expectMesh(360, 60.0, 11, 85);    // the benchmark's 640x360: two thirds of the pixels per radian
+  expectMesh(1080, 60.0, 32, 256);  // 1920x1080: twice
+  // Half the field of view at 540 lines: tan 30° / tan 15° = 2.155 times the pixels per radian.
+  expectMesh(540, 30.0, 34, 276);
+  // The viewer's low and medium presets in a 960x540 window are this rule at their render scales.
+  for (ViewQuality q : {ViewQuality::Low, ViewQuality::Medium}) {
+    const QualityPreset p = qualityPreset(q);
+    expectMesh(uint32_t(std::lround(540 * p.renderScale)), 60.0, p.mesh.ringsPerLevel, p.mesh.numPhi);
+  }
+  // Floors keep a thumbnail's limb round; ceilings are the mesh's own.
+  expectMesh(36, 60.0, kMeshMinRingsPerLevel, kMeshMinNumPhi);
+  expectMesh(8192, 1.0, kClipmapMaxRingsPerLevel, kClipmapMaxNumPhi);
+  EXPECT_NO_THROW(validateClipmapParams(meshForImage(reference, 8192, 1.0)));
 }
 
 TEST(ViewQuality, EachLevelUpCostsMoreAndTheRenderSizeFollowsTheWindow) {

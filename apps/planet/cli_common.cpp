@@ -13,6 +13,7 @@
 #include "core/log.h"
 #include "planet/planet_description.h"
 #include "render/renderer.h"
+#include "render/view_quality.h"
 
 namespace planet::cli {
 
@@ -226,6 +227,46 @@ SkyMode checkSkyMode(const std::string& mode) {
   if (mode != "tables" && mode != "reference")
     throw UsageError(fmt::format("--sky must be tables or reference, got '{}'", mode));
   return parseSkyMode(mode);
+}
+
+CLI::Option* addMeshOption(CLI::App& sub, std::string& text) {
+  return sub
+      .add_option("--mesh", text,
+                  fmt::format("auto: the clipmap's triangles the same size on screen at any image size ({}x{} at "
+                              "{} lines and a {:g} degree field of view, scaled with the pixels per radian); or "
+                              "RINGSxVERTICES: rings per level x vertices per ring",
+                              TerrainSettings{}.mesh.ringsPerLevel, TerrainSettings{}.mesh.numPhi, kMeshReferenceLines,
+                              kMeshReferenceFovDeg))
+      ->capture_default_str();
+}
+
+std::optional<ClipmapParams> parseMesh(const std::string& text) {
+  if (text == "auto") return std::nullopt;
+  const size_t x = text.find('x');
+  auto number = [](std::string_view part, uint32_t& value) {
+    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    return !part.empty() && ec == std::errc() && ptr == part.data() + part.size();
+  };
+  ClipmapParams mesh = TerrainSettings{}.mesh;
+  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), mesh.ringsPerLevel) ||
+      !number(std::string_view(text).substr(x + 1), mesh.numPhi))
+    throw UsageError(fmt::format("--mesh expects auto or RINGSxVERTICES (e.g. 16x128), got '{}'", text));
+  if (mesh.ringsPerLevel < 1 || mesh.ringsPerLevel > kClipmapMaxRingsPerLevel)
+    throw UsageError(fmt::format("--mesh {}: rings per level must be in 1..{}, got {}", text, kClipmapMaxRingsPerLevel,
+                                 mesh.ringsPerLevel));
+  if (mesh.numPhi < kClipmapMinNumPhi || mesh.numPhi > kClipmapMaxNumPhi)
+    throw UsageError(fmt::format("--mesh {}: vertices per ring must be in {}..{}, got {}", text, kClipmapMinNumPhi,
+                                 kClipmapMaxNumPhi, mesh.numPhi));
+  return mesh;
+}
+
+ClipmapParams meshFor(const std::optional<ClipmapParams>& fixed, uint32_t imageHeight, double fovYDeg) {
+  return fixed ? *fixed : meshForImage(TerrainSettings{}.mesh, imageHeight, fovYDeg);
+}
+
+std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg) {
+  return fmt::format("{} rings per level x {} vertices per ring{}", mesh.ringsPerLevel, mesh.numPhi,
+                     automatic ? fmt::format(" (auto for {} lines at {:g} degrees)", imageHeight, fovYDeg) : "");
 }
 
 }  // namespace planet::cli

@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "planet/clipmap_mesh.h"
 #include "planet/scene_description.h"
 #include "render/sky_pass.h"
 #include "camera/camera.h"
@@ -141,5 +143,16 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 // option writing `mode`; checkSkyMode turns the text into the mode, or a UsageError naming it.
 CLI::Option* addSkyModeOption(CLI::App& sub, std::string& mode);
 SkyMode checkSkyMode(const std::string& mode);
+
+// --mesh auto|RINGSxVERTICES (render, bench): the clipmap's density. "auto" is meshForImage's
+// (the default mesh scaled to the image's pixels per radian, triangles the same size on screen);
+// RINGSxVERTICES fixes the rings per level and the vertices per ring of the default's levels.
+// parseMesh gives nullopt for auto, else the mesh, or a UsageError quoting the text or naming
+// the count out of range; meshFor chooses the mesh of an image.
+CLI::Option* addMeshOption(CLI::App& sub, std::string& text);
+std::optional<ClipmapParams> parseMesh(const std::string& text);
+ClipmapParams meshFor(const std::optional<ClipmapParams>& fixed, uint32_t imageHeight, double fovYDeg);
+// "11 rings per level x 85 vertices per ring (auto for 360 lines at 60°)", for the outputs.
+std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg);
 
 }  // namespace planet::cli

@@ -130,6 +130,8 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   settings.sky.mode = checkSkyMode(cmd.sky);
   settings.terrain.water = !cmd.noWater;
   settings.terrain.lights = !cmd.noLights;
+  const std::optional<ClipmapParams> mesh = parseMesh(cmd.mesh);
+  settings.terrain.mesh = meshFor(mesh, settings.height, settings.fovYDeg);
   if (sub.count("--path")) return runVideoRender(global, cmd, sub, settings);
   for (const char* option : {"--frames", "--fps", "--path-body"})
     if (sub.count(option))
@@ -168,6 +170,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   fmt::print("camera: lat {} lon {} altitude {:.2f} m ({:.2f} m above the ground), heading {} pitch {}\n",
              result.camera.latitudeDeg, result.camera.longitudeDeg, result.camera.altitudeM, t.heightAboveGroundM,
              result.camera.headingDeg, result.camera.pitchDeg);
+  fmt::print("mesh: {}\n", describeMesh(settings.terrain.mesh, cmd.mesh == "auto", settings.height, settings.fovYDeg));
   fmt::print("metres per vertex at the nadir: {:.4g}\n", t.metresPerVertexAtNadir);
   fmt::print("triangles drawn: {} (rings {}..{} of {}), vertices evaluated: {}, patch levels built: {}\n", t.triangles,
              t.rings.firstRing, t.rings.lastRing, settings.terrain.mesh.levels * settings.terrain.mesh.ringsPerLevel,
@@ -221,6 +224,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
   sub->add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side");
   addSkyModeOption(*sub, cmd->sky);
+  addMeshOption(*sub, cmd->mesh);
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runRender(global, *cmd, *sub); });
 }

@@ -30,6 +30,7 @@ struct RenderCommand {
   std::string exposure = fmt::format("{:g}", SkySettings{}.exposure);  // a number or "auto"
   bool noClouds = false;
   bool noLights = false;
+  std::string mesh = "auto";  // --mesh: auto or RINGSxVERTICES
   bool noWater = false;
   std::string sky{skyModeName(SkySettings{}.mode)};
   // A video of a camera path (--path, --frames, --fps; with --scene also --path-body).

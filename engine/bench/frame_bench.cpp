@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "render/renderer.h"
+#include "render/view_quality.h"
 #include "vk/context.h"
 
 namespace planet {
@@ -101,6 +102,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.terrain.heightSource = modes[m].heightSource;
     settings.terrain.limitOctaves = modes[m].limitOctaves;
     settings.terrain.patches = options.patches;
+    settings.terrain.mesh = options.mesh;
     settings.terrain.patchTexelsPerFrame = realTimePatchBudget(settings.terrain.patchSettings);  // as the viewer
     settings.terrain.lights = options.lights;
     settings.autoExposure = options.autoExposure;
@@ -201,6 +203,10 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["height"] = options.height;
   j["fov_deg"] = options.fovYDeg;
   j["patches"] = options.patches;
+  j["mesh"] = {{"levels", options.mesh.levels},
+               {"rings_per_level", options.mesh.ringsPerLevel},
+               {"vertices_per_ring", options.mesh.numPhi},
+               {"auto", options.meshAuto}};
   j["lights"] = options.lights;
   if (options.autoExposure)
     j["exposure"] = "auto";
@@ -299,9 +305,14 @@ std::string FrameBenchReport::table() const {
       options.autoExposure ? "auto" : fmt::format("{:g}", options.exposure), pathSource, pathKeys, pathDurationS,
       options.frames, options.warmup);
   out += options.flightFps > 0.0
-             ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n\n",
+             ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n",
                            options.flightFps, options.flightFps)
-             : std::string("no lead-in frames: each timed frame follows the timed one before it\n\n");
+             : std::string("no lead-in frames: each timed frame follows the timed one before it\n");
+  out += fmt::format("mesh: {} levels x {} rings x {} vertices{}\n\n", options.mesh.levels, options.mesh.ringsPerLevel,
+                     options.mesh.numPhi,
+                     options.meshAuto
+                         ? fmt::format(" (auto: triangles the size they have at {} lines)", kMeshReferenceLines)
+                         : std::string());
   out += fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9}\n", "ms (mode " + main.mode.name + ")", "median", "p95", "p99",
                      "max");
   auto row = [&](const std::string& name, const Summary& s) {

@@ -47,6 +47,10 @@ struct FrameBenchOptions {
   bool autoExposure = false;
   double exposure = SkySettings{}.exposure;
   SkyMode skyMode = SkyMode::Tables;  // planet bench --sky
+  // The clipmap drawn (planet bench --mesh; the CLI's default is meshForImage's for the size);
+  // meshAuto only says so in the outputs.
+  ClipmapParams mesh = TerrainSettings{}.mesh;
+  bool meshAuto = false;
   // The rate of the flight the timed frames sample. Each timed frame follows an untimed lead-in
   // frame 1 / flightFps s of flight earlier, so that it does the work a frame of a real-time
   // flight at that rate does: what depends on the previous frame (the patch levels that moved,

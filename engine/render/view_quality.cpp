@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -45,7 +46,7 @@ QualityPreset qualityPreset(ViewQuality quality) {
       p.patchResolution = 256;
       p.faintestStarMagnitude = 6.5;
       break;
-    case ViewQuality::High:  // what planet render draws
+    case ViewQuality::High:  // what planet render draws at its default 960x540 (meshForImage's reference)
       p.renderScale = 1.0;
       p.mesh = TerrainSettings{}.mesh;
       p.subPixelRings = TerrainSettings{}.subPixelRings;
@@ -92,6 +93,23 @@ RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality qualit
   s.terrain.patchTexelsPerFrame = realTimePatchBudget(s.terrain.patchSettings);
   s.sky.viewSamples = p.atmosphereSamples;
   return s;
+}
+
+ClipmapParams meshForImage(const ClipmapParams& reference, uint32_t imageHeight, double fovYDeg) {
+  // Pixels per radian at the image's centre, relative to the reference image's.
+  auto pixelsPerRadian = [](double lines, double fovDeg) {
+    return lines / (2.0 * std::tan(0.5 * fovDeg * std::numbers::pi / 180.0));
+  };
+  const double scale = pixelsPerRadian(double(imageHeight), fovYDeg) /
+                       pixelsPerRadian(double(kMeshReferenceLines), kMeshReferenceFovDeg);
+  auto scaled = [scale](uint32_t count, uint32_t lowest, uint32_t highest) {
+    const double value = std::round(double(count) * scale);
+    return uint32_t(std::clamp(value, double(lowest), double(highest)));
+  };
+  ClipmapParams mesh = reference;
+  mesh.ringsPerLevel = scaled(reference.ringsPerLevel, kMeshMinRingsPerLevel, kClipmapMaxRingsPerLevel);
+  mesh.numPhi = scaled(reference.numPhi, kMeshMinNumPhi, kClipmapMaxNumPhi);
+  return mesh;
 }
 
 PlanetDescription viewPlanet(const PlanetDescription& planet, ViewQuality quality) {

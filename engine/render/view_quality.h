@@ -39,6 +39,21 @@ std::string describeQuality(ViewQuality quality);
 // `base` (its field of view, toggles and exposure are kept). The render size is at least 16×16.
 RenderSettings viewRenderSettings(const RenderSettings& base, ViewQuality quality, uint32_t windowWidth,
                                   uint32_t windowHeight);
+// The mesh for an image (issue 21, point 7): the clipmap keeps its triangles the same size on
+// screen whatever the image's size (Clasen & Hege's rings step with the pixel; seed 002 §2.1 ties
+// the finest ring to "the number of pixels per scanline"), so the rings per level and the vertices
+// per ring follow the image's pixels per radian at its centre. `reference` is the mesh for
+// kMeshReferenceLines lines at a kMeshReferenceFovDeg vertical field of view: the default render
+// size (960×540 at 60°), where TerrainSettings{}.mesh draws what `planet render` drew before this
+// rule; the viewer's low and medium presets are the same rule at their render scales. Levels are
+// kept (the finest ring's size is a matter of metres, not pixels). Floors of 2 rings per level and
+// 16 vertices per ring keep a thumbnail's limb round; ceilings are validateClipmapParams's.
+inline constexpr uint32_t kMeshReferenceLines = 540;
+inline constexpr double kMeshReferenceFovDeg = 60.0;
+inline constexpr uint32_t kMeshMinRingsPerLevel = 2;
+inline constexpr uint32_t kMeshMinNumPhi = 16;
+ClipmapParams meshForImage(const ClipmapParams& reference, uint32_t imageHeight, double fovYDeg);
+
 // The planet as drawn at `quality`: `planet` with its stars limited to the level's faintest
 // magnitude (the viewer saves the unlimited description).
 PlanetDescription viewPlanet(const PlanetDescription& planet, ViewQuality quality);
