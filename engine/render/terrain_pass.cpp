@@ -30,6 +30,7 @@
 #include "spv/terrain_noise_no_craters.vert.h"
 #include "spv/terrain_heights.comp.h"
 #include "spv/terrain_heights_no_craters.comp.h"
+#include "spv/terrain_split.comp.h"
 #include "vk/commands.h"
 #include "vk/context.h"
 #include "vk/graphics_pipeline.h"
@@ -64,6 +65,22 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // chunks
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,    // frame texels (the frame's uniforms again)
 };
+// terrain_split.comp: the culled triangle list and the vertices' surface in, the two lists out.
+constexpr VkDescriptorType kSplitBindingTypes[4] = {
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+struct SplitPush {  // terrain_split.comp's push constants
+  uint32_t triangleCount;
+  float seaLevelM;
+  float slope;
+  float marginM;
+};
+// How far a pixel's height may lie below its triangle's lowest vertex (terrain_split.comp): a rise
+// of 3 per metre of the longest edge (72°, steeper than the presets' slopes at any octave the
+// vertices leave out) plus 20 m.
+constexpr float kSplitSlope = 3.0f;
+constexpr float kSplitMarginM = 20.0f;
+
 // Where the shaders find FrameUniforms's indexed arrays among its texels.
 constexpr bool frameTexelAt(size_t offset, uint32_t texel) { return offset == texel * sizeof(glm::vec4); }
 static_assert(frameTexelAt(offsetof(gpu::FrameUniforms, patchLevels), gpu::kFrameTexelPatchLevels));
@@ -274,8 +291,13 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     const VkDeviceSize maxIndices = VkDeviceSize(6) * n * (rings - 1) + VkDeviceSize(3) * n;
     const VkDeviceSize maxChunks =
         VkDeviceSize(rings) * (std::min(kCullSectors, n) + n / gpu::kTerrainComputeWorkgroupSize + 1) + 1;
-    drawIndices_[slot] = {context, vk::createBuffer(context, maxIndices * sizeof(uint32_t),
-                                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, vk::MemoryUsage::Upload)};
+    drawIndices_[slot] = {
+        context, vk::createBuffer(context, maxIndices * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT | storage,
+                                  vk::MemoryUsage::Upload)};
+    if (planet.hasOcean && settings.splitSeaFloor && settings.heightSource != HeightSource::VertexShader)
+      for (vk::Owned<vk::Buffer>& list : splitIndices_[slot])
+        list = {context, vk::createBuffer(context, maxIndices * sizeof(uint32_t),
+                                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT | storage, vk::MemoryUsage::DeviceLocal)};
     chunks_[slot] = {context, vk::createBuffer(context, maxChunks * sizeof(glm::uvec2), storage, vk::MemoryUsage::Upload)};
     if (settings.heightSource == HeightSource::Cpu)
       cpuStaging_[slot] = {context, vk::createBuffer(context, 3 * vertexBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -317,6 +339,21 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   if (settings.heightSource == HeightSource::VertexShader)
     noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                           VK_SHADER_STAGE_VERTEX_BIT)};
+  if (splitIndices_[0][0]->buffer != VK_NULL_HANDLE) {
+    splitSetLayout_ = {context, vk::createSetLayout(context, kSplitBindingTypes, VK_SHADER_STAGE_COMPUTE_BIT)};
+    splitPool_ = {context, vk::createDescriptorPool(context, kSplitBindingTypes, vk::kFramesInFlight)};
+    for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
+      splitSets_[slot] = vk::allocateSet(context, splitPool_.get(), splitSetLayout_.get());
+      const vk::Buffer* buffers[] = {&*drawIndices_[slot], &*surface_, &*splitIndices_[slot][0],
+                                     &*splitIndices_[slot][1]};
+      for (uint32_t b = 0; b < std::size(buffers); ++b)
+        vk::writeBufferDescriptor(context, splitSets_[slot], b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, *buffers[b]);
+    }
+    splitLayout_ = {context, vk::createPipelineLayout(context, splitSetLayout_.get(), sizeof(SplitPush),
+                                                      VK_SHADER_STAGE_COMPUTE_BIT)};
+    splitPipeline_ = {context,
+                      vk::createComputePipelineWithLayout(context, kSpv_terrain_split_comp, splitLayout_.get())};
+  }
   // The fill pipelines are built on first use, per shading (prepare()).
   if (settings.wireframe) wireframePipeline_ = {context, createDrawPipeline(true)};
   // The sea reads the vertex buffers the compute (or CPU) heights fill; in seed 002's design
@@ -349,12 +386,14 @@ std::vector<uint32_t> TerrainPass::noiseVertexSpecialization(bool water) const {
   return values;
 }
 
-VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading) {
+VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading, bool earlyDepth) {
   vk::GraphicsPipelineDesc desc;
   desc.vertexSpirv = kSpv_terrain_vert;
   // Without a sea the shader writes no depth, and its variant tests the depth before shading
   // (terrain.frag): the pixels of ground hidden behind nearer ground are not shaded.
-  desc.fragmentSpirv = planet_.hasOcean ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
+  // With one, the ground that cannot be sea floor gets that variant too (splitsSeaFloor).
+  desc.fragmentSpirv =
+      planet_.hasOcean && !earlyDepth ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
   // The colour scheme, the polar caps, the eclipses and the frame's shading (TerrainShading) as
   // specialization constants (terrain.frag): lavapipe runs every side of a branch, and the seed
   // schemes' per-pixel noise (or the lights') would cost every planet.
@@ -470,7 +509,11 @@ void TerrainPass::prepareShadingPipelines() {
 void TerrainPass::buildFillPipeline(const TerrainShading& shading) {
   vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
   if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
+  vk::Owned<VkPipeline>& dry = dryPipelines_[shading.key()];
+  if (splitPipeline_.get() && !dry.get()) dry = {context_, createDrawPipeline(false, shading, true)};
 }
+
+bool TerrainPass::splitsSeaFloor() const { return splitPipeline_.get() && !settings_.wireframe; }
 
 void TerrainPass::buildForToggles() {
   if (settings_.wireframe && !wireframePipeline_.get()) wireframePipeline_ = {context_, createDrawPipeline(true)};
@@ -558,6 +601,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   if (patches) info.patchLayout = lod.patchLayout;
   info.wireframe = settings_.wireframe;
   info.waterDrawn = water_ && settings_.water && !settings_.wireframe;
+  info.seaFloorSplit = splitsSeaFloor();
 
   // View: the mesh's local frame with the camera at its origin. The mesh's positions are offsets
   // from its anchor (radius · its nadir), and the camera it was chosen for sits at (0, 0,
@@ -820,6 +864,27 @@ void TerrainPass::recordCompute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (timer) timer->end(cmd);
     computed_ = pending_;
   }
+  if (frame_.seaFloorSplit) recordSplit(cmd, timer);
+}
+
+void TerrainPass::recordSplit(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  const uint32_t triangles = drawIndexCount_ / 3;
+  if (triangles == 0) return;
+  if (timer) timer->begin(cmd, "split");
+  // After the heights (or their upload) and the previous draws from these lists.
+  vk::memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT,
+      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, splitPipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, splitLayout_.get(), 0, 1, &splitSets_[slot_], 0,
+                          nullptr);
+  const SplitPush push{triangles, float(planet_.seaLevelM), kSplitSlope, kSplitMarginM};
+  vkCmdPushConstants(cmd, splitLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  vkCmdDispatch(cmd, (triangles + 63) / 64, 1, 1);
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT, VK_ACCESS_2_INDEX_READ_BIT);
+  if (timer) timer->end(cmd);
 }
 
 void TerrainPass::invalidatePatches() {
@@ -851,6 +916,19 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframePipeline_.get());
     bindDrawState(cmd);
     vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
+  } else if (frame_.seaFloorSplit) {
+    // The ground that cannot be sea floor first, with the depth test before shading; then the
+    // rest, whose depth the shader may push back. Both lists keep the runs' positions.
+    for (int list = 0; list < 2; ++list) {
+      for (size_t k = 0; k < frame_.draws.size(); ++k) {
+        const TerrainDraw& draw = frame_.draws[k];
+        const auto& pipelines = list == 0 ? dryPipelines_ : fillPipelines_;
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[draw.shading.key()].get());
+        if (list == 0 && k == 0) bindDrawState(cmd);
+        if (k == 0) vkCmdBindIndexBuffer(cmd, splitIndices_[slot_][list]->buffer, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
+      }
+    }
   } else {
     // Each run of bands with its own fill pipeline (the bound state stays: one layout).
     for (size_t k = 0; k < frame_.draws.size(); ++k) {

@@ -88,6 +88,11 @@ struct TerrainSettings {
   // pictures are the same. Off, every frame shades with all the parts the planet has (to test
   // that they are).
   bool shadingPerFrame = true;
+  // Draw the ground that cannot be sea floor (its triangle's lowest vertex is far enough above
+  // sea level) with the early depth test, so that hidden ground is not shaded; the rest as before,
+  // its depth pushed back under the sea (terrain_split.comp). Planets with a sea, the compute and
+  // CPU heights. Off: all of it as before (to test the pictures against).
+  bool splitSeaFloor = true;
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
@@ -168,6 +173,7 @@ struct TerrainFrameInfo {
   bool lodFrozen = false;   // orientation, rings, octave tables and patch layout are those of a frozen frame
   bool wireframe = false;   // drawn as triangle edges
   bool waterDrawn = false;  // the water sphere is drawn
+  bool seaFloorSplit = false;  // the ground that cannot be sea floor is drawn first, with the early depth test
   TerrainShading shading;   // the parts of the ground's shading the view can show (each draw's are among them)
   std::vector<TerrainDraw> draws;  // the fill draws, near to far (none in wireframe)
   // The sun the shaders got: irradiance at the top of the atmosphere (gpu::kSunIrradiance units)
@@ -205,8 +211,9 @@ struct TerrainView {
 
 class TerrainPass {
  public:
-  // Timing scopes a frame records at most: "heights", "patches", "terrain", and the water pass's.
-  static constexpr uint32_t kTimingScopes = 3 + WaterPass::kTimingScopes;
+  // Timing scopes a frame records at most: "heights", "patches", "split", "terrain", and the
+  // water pass's.
+  static constexpr uint32_t kTimingScopes = 4 + WaterPass::kTimingScopes;
 
   // `sky` provides the transmittance table and sky irradiance the shading uses; it must outlive the pass.
   TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
@@ -276,6 +283,10 @@ class TerrainPass {
   // Per-vertex results of the compute passes (layouts in shaders/shared/render_params.h).
   const vk::Buffer& surfaceBuffer() const { return *surface_; }
   const vk::Buffer& normalBuffer() const { return *normals_; }
+  // The last prepared frame's triangle list of the ground that cannot be sea floor (uint32
+  // indices, TerrainFrameInfo::triangles of them, the others collapsed to one vertex); null
+  // unless that frame split the sea floor (TerrainFrameInfo::seaFloorSplit).
+  const vk::Buffer* dryTriangles() const { return frame_.seaFloorSplit ? &*splitIndices_[slot_][0] : nullptr; }
   // The maximum terrain height the horizon cut allows for (estimated once per planet).
   double maxTerrainHeightM() const { return maxTerrainHeightM_; }
   // The lowest surface a sight line can graze (m above the radius sphere): the sea level with a
@@ -302,8 +313,15 @@ class TerrainPass {
   // Creates what the current toggles need and does not exist yet: the draw pipeline of the
   // polygon mode, the full-size patch textures (the pass may have started without them).
   void buildForToggles();
-  VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {});
-  // The fill pipeline of `shading`, built unless it exists.
+  // earlyDepth: the variant that writes no depth and tests it before shading (terrain.frag), which
+  // planets without a sea always draw with.
+  VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {}, bool earlyDepth = false);
+  // Whether this frame's fill draws are split by terrain_split.comp (TerrainSettings::splitSeaFloor).
+  bool splitsSeaFloor() const;
+  // The split's dispatch and its barriers (recordCompute).
+  void recordSplit(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  // The fill pipeline of `shading` (and its early-depth variant when the sea floor is split), built
+  // unless it exists.
   void buildFillPipeline(const TerrainShading& shading);
   // The parts of the ground's shading this view can show (all the planet has when
   // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
@@ -383,6 +401,16 @@ class TerrainPass {
   // The draw as edges, on first use; filled, one per TerrainShading::key(), each on first use.
   vk::Owned<VkPipeline> wireframePipeline_;
   std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> fillPipelines_;
+  // The sea floor's split (terrain_split.comp): per frame slot, the culled triangle list's ground
+  // that cannot be sea floor and the rest (the same positions, the other's triangles collapsed),
+  // and the early-depth fill pipelines that draw the former.
+  vk::Owned<vk::Buffer> splitIndices_[vk::kFramesInFlight][2];
+  vk::Owned<VkDescriptorSetLayout> splitSetLayout_;
+  vk::Owned<VkDescriptorPool> splitPool_;
+  VkDescriptorSet splitSets_[vk::kFramesInFlight] = {};
+  vk::Owned<VkPipelineLayout> splitLayout_;
+  vk::Owned<VkPipeline> splitPipeline_;
+  std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> dryPipelines_;
   std::unique_ptr<WaterPass> water_;  // planets with an ocean, except HeightSource::VertexShader
 
   uint32_t slot_ = 0;  // of the last prepare()
