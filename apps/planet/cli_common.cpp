@@ -27,14 +27,22 @@ std::unique_ptr<vk::Context> openContext(const GlobalOptions& options) {
   return vk::createContext(contextOptions);
 }
 
-void parseSize(const std::string& text, uint32_t& width, uint32_t& height, uint32_t maxWidth, uint32_t maxHeight) {
+namespace {
+
+// "AxB" as two unsigned decimal counts (--size, --mesh): false unless the whole text is that.
+bool parseCountPair(std::string_view text, uint32_t& first, uint32_t& second) {
   const size_t x = text.find('x');
-  auto number = [&](std::string_view part, uint32_t& value) {
+  auto number = [](std::string_view part, uint32_t& value) {
     auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
     return !part.empty() && ec == std::errc() && ptr == part.data() + part.size();
   };
-  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), width) ||
-      !number(std::string_view(text).substr(x + 1), height))
+  return x != std::string_view::npos && number(text.substr(0, x), first) && number(text.substr(x + 1), second);
+}
+
+}  // namespace
+
+void parseSize(const std::string& text, uint32_t& width, uint32_t& height, uint32_t maxWidth, uint32_t maxHeight) {
+  if (!parseCountPair(text, width, height))
     throw UsageError("--size expects WIDTHxHEIGHT in pixels, got '" + text + "'");
   if (width == 0 || height == 0 || width > maxWidth || height > maxHeight)
     throw UsageError(fmt::format("--size {} is outside 1x1 .. {}x{}", text, maxWidth, maxHeight));
@@ -242,14 +250,8 @@ CLI::Option* addMeshOption(CLI::App& sub, std::string& text) {
 
 std::optional<ClipmapParams> parseMesh(const std::string& text) {
   if (text == "auto") return std::nullopt;
-  const size_t x = text.find('x');
-  auto number = [](std::string_view part, uint32_t& value) {
-    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-    return !part.empty() && ec == std::errc() && ptr == part.data() + part.size();
-  };
   ClipmapParams mesh = TerrainSettings{}.mesh;
-  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), mesh.ringsPerLevel) ||
-      !number(std::string_view(text).substr(x + 1), mesh.numPhi))
+  if (!parseCountPair(text, mesh.ringsPerLevel, mesh.numPhi))
     throw UsageError(fmt::format("--mesh expects auto or RINGSxVERTICES (e.g. 16x128), got '{}'", text));
   if (mesh.ringsPerLevel < 1 || mesh.ringsPerLevel > kClipmapMaxRingsPerLevel)
     throw UsageError(fmt::format("--mesh {}: rings per level must be in 1..{}, got {}", text, kClipmapMaxRingsPerLevel,
@@ -262,11 +264,6 @@ std::optional<ClipmapParams> parseMesh(const std::string& text) {
 
 ClipmapParams meshFor(const std::optional<ClipmapParams>& fixed, uint32_t imageHeight, double fovYDeg) {
   return fixed ? *fixed : meshForImage(TerrainSettings{}.mesh, imageHeight, fovYDeg);
-}
-
-std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg) {
-  return fmt::format("{} rings per level x {} vertices per ring{}", mesh.ringsPerLevel, mesh.numPhi,
-                     automatic ? fmt::format(" (auto for {} lines at {:g} degrees)", imageHeight, fovYDeg) : "");
 }
 
 }  // namespace planet::cli

@@ -152,7 +152,5 @@ SkyMode checkSkyMode(const std::string& mode);
 CLI::Option* addMeshOption(CLI::App& sub, std::string& text);
 std::optional<ClipmapParams> parseMesh(const std::string& text);
 ClipmapParams meshFor(const std::optional<ClipmapParams>& fixed, uint32_t imageHeight, double fovYDeg);
-// "11 rings per level x 85 vertices per ring (auto for 360 lines at 60°)", for the outputs.
-std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg);
 
 }  // namespace planet::cli

@@ -14,6 +14,7 @@
 #include "planet/scene_description.h"
 #include "planet/terrain_height.h"
 #include "render/renderer.h"
+#include "render/view_quality.h"
 #include "vk/context.h"
 
 namespace planet::cli {
@@ -170,7 +171,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   fmt::print("camera: lat {} lon {} altitude {:.2f} m ({:.2f} m above the ground), heading {} pitch {}\n",
              result.camera.latitudeDeg, result.camera.longitudeDeg, result.camera.altitudeM, t.heightAboveGroundM,
              result.camera.headingDeg, result.camera.pitchDeg);
-  fmt::print("mesh: {}\n", describeMesh(settings.terrain.mesh, cmd.mesh == "auto", settings.height, settings.fovYDeg));
+  fmt::print("mesh: {}\n", describeMesh(settings.terrain.mesh, !mesh, settings.height, settings.fovYDeg));
   fmt::print("metres per vertex at the nadir: {:.4g}\n", t.metresPerVertexAtNadir);
   fmt::print("triangles drawn: {} (rings {}..{} of {}), vertices evaluated: {}, patch levels built: {}\n", t.triangles,
              t.rings.firstRing, t.rings.lastRing, settings.terrain.mesh.levels * settings.terrain.mesh.ringsPerLevel,

@@ -308,11 +308,7 @@ std::string FrameBenchReport::table() const {
              ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n",
                            options.flightFps, options.flightFps)
              : std::string("no lead-in frames: each timed frame follows the timed one before it\n");
-  out += fmt::format("mesh: {} levels x {} rings x {} vertices{}\n\n", options.mesh.levels, options.mesh.ringsPerLevel,
-                     options.mesh.numPhi,
-                     options.meshAuto
-                         ? fmt::format(" (auto: triangles the size they have at {} lines)", kMeshReferenceLines)
-                         : std::string());
+  out += fmt::format("mesh: {}\n\n", describeMesh(options.mesh, options.meshAuto, options.height, options.fovYDeg));
   out += fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9}\n", "ms (mode " + main.mode.name + ")", "median", "p95", "p99",
                      "max");
   auto row = [&](const std::string& name, const Summary& s) {

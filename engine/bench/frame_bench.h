@@ -74,12 +74,13 @@ std::vector<BenchMode> benchModes(bool compare);
 // The "terrain time" of a frame, the quantity --compare compares: the GPU passes that produce
 // and draw the terrain mesh, "heights" (compute heights and normals, or the CPU upload and
 // normals), "split" (the ground that cannot be sea floor, TerrainSettings::splitSeaFloor; not in
-// vertex_shader mode, whose heights come only with the draw) and the whole render pass that draws the geometry
-// ("stars", "terrain", in which vertex_shader mode evaluates the heights, and "water"), plus the CPU evaluation of cpu
-// mode. The whole render pass, not the "terrain" scope alone: lavapipe writes a timestamp inside a render pass when its
-// rasterizer reaches it, but shades vertices when the draw is recorded, so a draw's vertex work lands in the pass's
-// first scope (measured: in vertex_shader mode "stars" read 1,746 ms and "terrain" 0.45 ms). The stars are the same
-// work in every mode, and so are the patch textures, which are left out.
+// vertex_shader mode, whose heights come only with the draw) and the whole render pass that
+// draws the geometry ("stars", "terrain", in which vertex_shader mode evaluates the heights, and
+// "water"), plus the CPU evaluation of cpu mode. The whole render pass, not the "terrain" scope
+// alone: lavapipe writes a timestamp inside a render pass when its rasterizer reaches it, but
+// shades vertices when the draw is recorded, so a draw's vertex work lands in the pass's first
+// scope (measured: in vertex_shader mode "stars" read 1,746 ms and "terrain" 0.45 ms). The stars
+// are the same work in every mode, and so are the patch textures, which are left out.
 inline constexpr const char* kTerrainTimePasses[] = {"heights", "split", "stars", "terrain", "water"};
 
 struct FrameRecord {

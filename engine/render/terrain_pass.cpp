@@ -273,6 +273,8 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   vk::uploadBuffer(context, *budgets_, budgets.data(), budgets.size() * sizeof(gpu::RingBudget));
 
   const VkDeviceSize vertexBytes = vertexCount * sizeof(glm::vec4);
+  // The sea floor's split needs the heights before the draw (TerrainSettings::splitSeaFloor).
+  const bool split = planet.hasOcean && settings.splitSeaFloor && settings.heightSource != HeightSource::VertexShader;
   surface_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
   normals_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
   attributes_ = {context, vk::createBuffer(context, vertexBytes, vertexStorage, vk::MemoryUsage::DeviceLocal)};
@@ -294,7 +296,7 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     drawIndices_[slot] = {
         context, vk::createBuffer(context, maxIndices * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT | storage,
                                   vk::MemoryUsage::Upload)};
-    if (planet.hasOcean && settings.splitSeaFloor && settings.heightSource != HeightSource::VertexShader)
+    if (split)
       for (vk::Owned<vk::Buffer>& list : splitIndices_[slot])
         list = {context, vk::createBuffer(context, maxIndices * sizeof(uint32_t),
                                           VK_BUFFER_USAGE_INDEX_BUFFER_BIT | storage, vk::MemoryUsage::DeviceLocal)};
@@ -339,7 +341,7 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   if (settings.heightSource == HeightSource::VertexShader)
     noiseDrawLayout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
                                                           VK_SHADER_STAGE_VERTEX_BIT)};
-  if (splitIndices_[0][0]->buffer != VK_NULL_HANDLE) {
+  if (split) {
     splitSetLayout_ = {context, vk::createSetLayout(context, kSplitBindingTypes, VK_SHADER_STAGE_COMPUTE_BIT)};
     splitPool_ = {context, vk::createDescriptorPool(context, kSplitBindingTypes, vk::kFramesInFlight)};
     for (uint32_t slot = 0; slot < vk::kFramesInFlight; ++slot) {
@@ -916,26 +918,20 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wireframePipeline_.get());
     bindDrawState(cmd);
     vkCmdDrawIndexed(cmd, drawIndexCount_, 1, 0, 0, 0);
-  } else if (frame_.seaFloorSplit) {
-    // The ground that cannot be sea floor first, with the depth test before shading; then the
-    // rest, whose depth the shader may push back. Both lists keep the runs' positions.
-    for (int list = 0; list < 2; ++list) {
-      for (size_t k = 0; k < frame_.draws.size(); ++k) {
-        const TerrainDraw& draw = frame_.draws[k];
-        const auto& pipelines = list == 0 ? dryPipelines_ : fillPipelines_;
+  } else {
+    // Each run of bands with its own fill pipeline (the bound state stays: one layout). With the
+    // sea floor split, the runs twice: the ground that cannot be sea floor first, by the pipelines
+    // that test depth before shading; then the rest, whose depth the shader may push back. Both
+    // lists keep the runs' positions.
+    bindDrawState(cmd);
+    const int lists = frame_.seaFloorSplit ? 2 : 1;
+    for (int list = 0; list < lists; ++list) {
+      if (frame_.seaFloorSplit) vkCmdBindIndexBuffer(cmd, splitIndices_[slot_][list]->buffer, 0, VK_INDEX_TYPE_UINT32);
+      const auto& pipelines = frame_.seaFloorSplit && list == 0 ? dryPipelines_ : fillPipelines_;
+      for (const TerrainDraw& draw : frame_.draws) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[draw.shading.key()].get());
-        if (list == 0 && k == 0) bindDrawState(cmd);
-        if (k == 0) vkCmdBindIndexBuffer(cmd, splitIndices_[slot_][list]->buffer, 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
       }
-    }
-  } else {
-    // Each run of bands with its own fill pipeline (the bound state stays: one layout).
-    for (size_t k = 0; k < frame_.draws.size(); ++k) {
-      const TerrainDraw& draw = frame_.draws[k];
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fillPipelines_[draw.shading.key()].get());
-      if (k == 0) bindDrawState(cmd);
-      vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);
     }
   }
   if (timer) timer->end(cmd);

@@ -112,6 +112,11 @@ ClipmapParams meshForImage(const ClipmapParams& reference, uint32_t imageHeight,
   return mesh;
 }
 
+std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg) {
+  return fmt::format("{} rings per level x {} vertices per ring{}", mesh.ringsPerLevel, mesh.numPhi,
+                     automatic ? fmt::format(" (auto for {} lines at {:g} degrees)", imageHeight, fovYDeg) : "");
+}
+
 PlanetDescription viewPlanet(const PlanetDescription& planet, ViewQuality quality) {
   PlanetDescription drawn = planet;
   drawn.stars.faintestMagnitude = std::min(drawn.stars.faintestMagnitude, qualityPreset(quality).faintestStarMagnitude);

@@ -53,6 +53,10 @@ inline constexpr double kMeshReferenceFovDeg = 60.0;
 inline constexpr uint32_t kMeshMinRingsPerLevel = 2;
 inline constexpr uint32_t kMeshMinNumPhi = 16;
 ClipmapParams meshForImage(const ClipmapParams& reference, uint32_t imageHeight, double fovYDeg);
+// "11 rings per level x 85 vertices per ring (auto for 360 lines at 60 degrees)": the mesh a
+// render or benchmark drew, and whether meshForImage chose it (for that image height and field
+// of view).
+std::string describeMesh(const ClipmapParams& mesh, bool automatic, uint32_t imageHeight, double fovYDeg);
 
 // The planet as drawn at `quality`: `planet` with its stars limited to the level's faintest
 // magnitude (the viewer saves the unlimited description).
