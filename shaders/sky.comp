@@ -23,6 +23,13 @@
 #include "sky_compose.glsl"
 
 #ifndef SKY_REFERENCE
+// The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial), as a
+// specialization constant: each class's tiles are dispatched by a pipeline of their own
+// (SkyPass::recordCompose, from the lists of sky_classify.comp), so that a tile of sky runs no
+// aerial-perspective code and a tile of ground no sky-view code: lavapipe runs both sides of a
+// branch for every pixel.
+layout(constant_id = 2) const uint kSpecTileClass = kSkyTileMixed;
+
 layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform readonly image2D cloudSampleLight;
 layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform readonly image2D cloudSampleEnd;
 
@@ -121,14 +128,25 @@ float skyEclipse(vec3 dir, vec2 stretch, bool fromInside) {
 
 void main() {
   // The dispatch covers the pixels where the air or the sun can show (sky.region); elsewhere a ray
-  // meets no air, and the pixel keeps what was drawn.
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(sky.region.xy);
+  // meets no air, and the pixel keeps what was drawn. The tables' compose runs this class's
+  // tiles of the region (a workgroup each).
+#ifdef SKY_REFERENCE
+  ivec2 group = ivec2(gl_WorkGroupID.xy);
+#else
+  uint tile = skyTiles.tiles[kSpecTileClass * skyTiles.dispatches[0].w + gl_WorkGroupID.x];
+  ivec2 group = ivec2(tile & 0xffffu, tile >> 16u);
+#endif
+  ivec2 pixel = ivec2(sky.region.xy) + group * int(kSkyWorkgroupSize) + ivec2(gl_LocalInvocationID.xy);
   if (pixel.x >= int(sky.extent.x) || pixel.y >= int(sky.extent.y)) return;
   vec4 stored = imageLoad(color, pixel);
   vec3 surface = stored.rgb;
   ViewRay ray = viewRay(vec2(pixel) + 0.5f, texelFetch(depthBuffer, pixel, 0).r);
   vec3 dir = ray.dir;
+#ifdef SKY_REFERENCE
   bool geometry = ray.geometry;
+#else
+  bool geometry = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass == kSkyTileAerial ? true : ray.geometry;
+#endif
   float tGeometry = ray.tGeometry;
   bool seesGround = ray.seesGround;
   float hGround = ray.hGround;
@@ -202,9 +220,18 @@ void main() {
     // Geometry past the far side of the air (another body, a ring, seen through this one's
     // limb or from under its sky) is seen through the whole crossing, as the sky around it is:
     // the same tables, so its outline leaves no seam in the haze. (From above, the volume's
-    // columns end halfway through a crossing that misses the ground.)
+    // columns end halfway through a crossing that misses the ground.) A tile of one class takes
+    // one side only: its pipeline has no code of the other (sky_classify.comp says why that is
+    // exact).
     bool pastAir = geometry && !seesGround && stretch.y > stretch.x && tGeometry >= stretch.y;
-    if (geometry && !pastAir) {
+#ifdef SKY_REFERENCE
+    bool aerial = geometry && !pastAir;
+#else
+    bool aerial = kSpecTileClass == kSkyTileAerial ? true
+                  : kSpecTileClass == kSkyTileSky  ? false
+                                                   : geometry && !pastAir;
+#endif
+    if (aerial) {
       aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);
     } else {
       inscatter = skyViewRadiance(dir, sun, h, hGround);

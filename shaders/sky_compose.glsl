@@ -263,6 +263,14 @@ ViewRay viewRay(vec2 screenPoint, float depth) {
   return ray;
 }
 
+// The compose's tiles by class (kSkyBindingTiles): written by sky_classify.comp, read by the
+// tables' compose (sky.comp) and its indirect dispatches.
+layout(set = 0, binding = kSkyBindingTiles, std430) buffer SkyTiles {
+  uvec4 dispatches[kSkyTileClasses];  // x: the class's tiles; dispatches[0].w: each list's capacity
+  uint tiles[];
+}
+skyTiles;
+
 // Whether the frame draws clouds (the preset has them, they are on, and there is air). Also as a
 // specialization constant (SkyPass::cloudsDrawn), so that a pipeline without them has no cloud
 // code: lavapipe runs every branch for every pixel.

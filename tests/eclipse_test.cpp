@@ -412,6 +412,44 @@ TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
   EXPECT_LT(skyEclipse, 0.03 * skyClear) << skyEclipse << " vs " << skyClear;
 }
 
+// In a scene the frame's depth holds other bodies, which may lie past the air's far side and take
+// the sky-view table (SkyView::ownSurfacesOnly): the compose's tiles of ground are then composed
+// by the pipeline with both sides, and only the tiles of sky by one without the aerial volume's
+// code (sky_classify.comp). The picture is that of every tile composed with both, bit for bit:
+// from 2 km on Terra looking along the horizon toward the Moon's side of the sky, and from
+// 20,000 km with the Moon beside Terra.
+TEST_F(EclipseGpu, ASceneComposesNoTileOfGroundWithoutTheSkyViewTable) {
+  const SceneDescription scene = resolveScene("system");
+  const size_t terra = sceneBodyIndex(scene, "Terra");
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  RenderSettings mixedSettings = settings;
+  mixedSettings.sky.tileClasses = false;
+  Renderer classes(context(), scene, settings);
+  Renderer mixed(context(), scene, mixedSettings);
+  const std::vector<BodyState> states = sceneStateAt(scene, kSolarEclipseS);
+  CameraPose low;
+  low.latitudeDeg = kUmbraLatitudeDeg + 20.0;
+  low.longitudeDeg = kUmbraLongitudeDeg;
+  low.altitudeM = 2000.0;
+  low.pitchDeg = 2.0;
+  CameraPose high = low;
+  high.altitudeM = 2.0e7;
+  high.pitchDeg = -90.0;
+  for (const CameraPose& pose : {low, high}) {
+    SCOPED_TRACE("from " + std::to_string(pose.altitudeM) + " m");
+    const CameraBasis local = cameraBasis(pose, scene.bodies[terra].planet.radiusM);
+    const RenderResult a = classes.renderScene(sceneView(states, kSolarEclipseS, terra, local));
+    const RenderResult b = mixed.renderScene(sceneView(states, kSolarEclipseS, terra, local));
+    EXPECT_EQ(a.image.pixels, b.image.pixels);
+    for (size_t body = 0; body < scene.bodies.size(); ++body)
+      EXPECT_EQ(classes.sky(body).readTileCounts()[gpu::kSkyTileAerial], 0u) << scene.bodies[body].name;
+    if (pose.altitudeM < 1e4)  // the sky above the horizon is tiles of sky
+      EXPECT_GT(classes.sky(terra).readTileCounts()[gpu::kSkyTileSky], 0u);
+  }
+}
+
 // The lunar eclipse from 20,000 km above Terra's night side, looking at the Moon (40,000 km
 // away, 5 degrees across in a 10-degree view): the Moon inside Terra's umbra is dark, at most
 // 1 % of the same Moon an hour and a half later, outside the shadow (by then it has moved

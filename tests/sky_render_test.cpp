@@ -456,6 +456,58 @@ TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
   }
 }
 
+// The tables' compose runs the tiles whose pixels all show the sky, or all show the ground, by
+// pipelines without the other side's code (SkySettings::tileClasses, sky_classify.comp): the
+// pictures are those of the pipeline with both sides, bit for bit, and from a plane most tiles
+// are of one kind. From 1.5 km looking at the horizon, from 10 km looking down, Earth's limb from
+// 6,300 km, and the airless Moon looking at the sun (its compose runs only around the disc).
+TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
+  struct View {
+    const char* preset;
+    CameraPose camera;
+    double leastOfOneKind;  // share of the tiles that are all sky or all ground
+  };
+  const View views[] = {
+      {"earth", {36.5, -118.3, 1500, 90, 2}, 0.7},
+      {"earth", {36.5, -118.3, 10000, 90, -60}, 0.9},
+      {"earth", {20, -30, 6.3e6, 135, -45}, 0.5},
+      {"moon", {10, 20, 3000, 135, 30}, 0.5},
+  };
+  const SunPose sun{135, 35};
+  RenderSettings settings = skySettings();
+  settings.width = 192;
+  settings.height = 108;
+  RenderSettings mixedSettings = settings;
+  mixedSettings.sky.tileClasses = false;
+  for (const View& view : views) {
+    SCOPED_TRACE(std::string(view.preset) + " from " + std::to_string(view.camera.altitudeM) + " m");
+    const PlanetDescription planet = resolvePreset(view.preset);
+    Renderer classes(context(), planet, settings);
+    Renderer mixed(context(), planet, mixedSettings);
+    const Rgba8Image a = classes.render(view.camera, sun).image;
+    const Rgba8Image b = mixed.render(view.camera, sun).image;
+    EXPECT_EQ(a.pixels, b.pixels);
+    const auto counts = classes.sky().readTileCounts();
+    const auto mixedCounts = mixed.sky().readTileCounts();
+    const uint32_t tiles = counts[gpu::kSkyTileMixed] + counts[gpu::kSkyTileSky] + counts[gpu::kSkyTileAerial];
+    // Every tile of the compose's region is composed once, in either setting.
+    const PixelRect& region = classes.sky().composeRegion();
+    const uint32_t group = gpu::kSkyWorkgroupSize;
+    EXPECT_EQ(tiles, ((region.width() + group - 1) / group) * ((region.height() + group - 1) / group));
+    EXPECT_EQ(mixedCounts[gpu::kSkyTileMixed], tiles);
+    const double oneKind = double(counts[gpu::kSkyTileSky] + counts[gpu::kSkyTileAerial]) / std::max(tiles, 1u);
+    std::printf("sky tiles, %s from %.0f m: %u tiles, %u sky, %u ground, %u mixed\n", view.preset,
+                view.camera.altitudeM, tiles, counts[gpu::kSkyTileSky], counts[gpu::kSkyTileAerial],
+                counts[gpu::kSkyTileMixed]);
+    EXPECT_GE(oneKind, view.leastOfOneKind);
+    if (a.pixels != b.pixels) {
+      const std::string name = testOutputDir().string() + "/sky_tiles_" + std::to_string(&view - views);
+      writePng(name + ".classes.png", a);
+      writePng(name + ".mixed.png", b);
+    }
+  }
+}
+
 // The sky-view table the GPU builds each frame against the double CPU reference of the same
 // source (skyViewTable): from the ground, from 10 km at twilight and from 400 km. Half the
 // texels within 0.1 % of the brightest (half floats hold 3 digits; the GPU marches in float), 99 %

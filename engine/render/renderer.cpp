@@ -376,6 +376,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     const glm::dmat3 planetToLocal = glm::transpose(bodyFrame.viewOrientation.localToPlanet);
     SkyView skyView;
     skyView.lowestSurfaceM = bodies_[i].terrain->lowestSurfaceM();
+    skyView.ownSurfacesOnly = bodies_.size() == 1 && !bodies_[i].rings &&
+                              bodies_[i].terrain->maxTerrainHeightM() < bodies_[i].planet.atmosphere.heightM;
     skyView.viewProjection = projection * viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);
     skyView.localToPlanet = bodyFrame.viewOrientation.localToPlanet;
     skyView.forward = planetToLocal * t.camera.forward;

@@ -13,6 +13,7 @@
 #include "render/sky_tables.h"
 #include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
+#include "spv/sky_classify.comp.h"
 #include "spv/sky_clouds.comp.h"
 #include "spv/sky_reference.comp.h"
 #include "spv/sky_view.comp.h"
@@ -40,7 +41,9 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // aerial transmittance
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud light (the cloud pass writes it, the compose reads it)
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud end (likewise)
+    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // the tiles by class (the classify pass writes them, the compose reads them)
 };
+static_assert(std::size(kComposeBindings) == gpu::kSkyBindingTiles + 1, "one descriptor type per compose binding");
 
 // The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
 constexpr VkDescriptorType kTableBindings[] = {
@@ -58,6 +61,12 @@ constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+// sky_classify.comp's push constant.
+struct ClassifyPush {
+  uint32_t tilesX, tilesY;  // the compose region's tiles
+  uint32_t classes;         // bit c set: tiles may be of class c (else they are mixed)
+};
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
@@ -219,9 +228,18 @@ void SkyPass::makePipelines(bool clouds) {
       aerialBuild_ = {context_,
                       vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
     }
-    if (!tablesCompose_[clouds].get())
-      tablesCompose_[clouds] = {
-          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), {constants, 2})};
+    if (!classify_.get()) {
+      classifyLayout_ = {context_, vk::createPipelineLayout(context_, setLayout_.get(), sizeof(ClassifyPush),
+                                                            VK_SHADER_STAGE_COMPUTE_BIT)};
+      classify_ = {context_,
+                   vk::createComputePipelineWithLayout(context_, kSpv_sky_classify_comp, classifyLayout_.get())};
+    }
+    for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) {
+      if (tablesCompose_[clouds][tileClass].get()) continue;
+      const uint32_t classConstants[] = {constants[0], constants[1], tileClass};
+      tablesCompose_[clouds][tileClass] = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), classConstants)};
+    }
     if (clouds && !cloudsPass_.get())
       cloudsPass_ = {
           context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(), {constants, 1})};
@@ -247,7 +265,17 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
   cloudLight_ = {context_, vk::createImage2D(context_, extent, kCloudLightFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
   cloudEnd_ = {context_, vk::createImage2D(context_, extent, kCloudEndFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
   cloudImagesInitialised_ = false;
+  // The tile lists: room for every tile of the image in each class.
+  const uint32_t group = gpu::kSkyWorkgroupSize;
+  tileCapacity_ = ((width_ + group - 1) / group) * ((height_ + group - 1) / group);
+  tiles_.reset();
+  tiles_ = {context_,
+            vk::createBuffer(context_, kTileHeaderBytes + VkDeviceSize(gpu::kSkyTileClasses) * tileCapacity_ * 4,
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             vk::MemoryUsage::DeviceLocal)};
   for (VkDescriptorSet set : sets_) {
+    vk::writeBufferDescriptor(context_, set, gpu::kSkyBindingTiles, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, *tiles_);
     vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudLight, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                              cloudLight_->view, VK_IMAGE_LAYOUT_GENERAL);
     vk::writeImageDescriptor(context_, set, gpu::kSkyBindingCloudEnd, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cloudEnd_->view,
@@ -313,6 +341,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
     region.y1 = std::min(region.y0 + (region.height() + group - 1) / group * group, height);
   }
   composeRegion_ = region;
+  ownSurfacesOnly_ = view.ownSurfacesOnly;
   // The cloud pass's samples that the compose's pixels read (each pixel the four around it).
   const uint32_t samplesX = (width + cloudScale_ - 1) / cloudScale_,
                  samplesY = (height + cloudScale_ - 1) / cloudScale_;
@@ -399,11 +428,53 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
   if (timer && tables) timer->next(cmd, "compose");
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                    tables ? tablesCompose_[clouds].get() : referenceCompose_[clouds].get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
-  vkCmdDispatch(cmd, (composeRegion_.width() + group - 1) / group, (composeRegion_.height() + group - 1) / group, 1);
+  const uint32_t groupsX = (composeRegion_.width() + group - 1) / group,
+                 groupsY = (composeRegion_.height() + group - 1) / group;
+  if (tables) {
+    // The region's tiles sorted by class (sky_classify.comp), then each class composed by its
+    // own pipeline, as many workgroups as the class has tiles. The lists are emptied first,
+    // after the previous frame's compose (earlier on the queue) has read them.
+    vk::memoryBarrier(cmd, compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    uint32_t header[kTileHeaderBytes / 4] = {};
+    for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass)
+      header[4 * tileClass + 1] = header[4 * tileClass + 2] = 1;  // y and z of each class's dispatch
+    header[3] = tileCapacity_;
+    vkCmdUpdateBuffer(cmd, tiles_->buffer, 0, sizeof(header), header);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, compute,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classify_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyLayout_.get(), 0, 1, &sets_[slot_], 0,
+                            nullptr);
+    uint32_t classes = 0;
+    if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (ownSurfacesOnly_ ? 1u << gpu::kSkyTileAerial : 0u);
+    const ClassifyPush push{groupsX, groupsY, classes};
+    vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    // One invocation per tile.
+    vkCmdDispatch(cmd, (groupsX + group - 1) / group, (groupsY + group - 1) / group, 1);
+    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    // (The classify's layout has a push constant, so the set is bound again for the compose's.)
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tablesCompose_[clouds][tileClass].get());
+      vkCmdDispatchIndirect(cmd, tiles_->buffer, VkDeviceSize(16) * tileClass);
+    }
+  } else {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, referenceCompose_[clouds].get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  }
   if (timer) timer->end(cmd);
+}
+
+std::array<uint32_t, gpu::kSkyTileClasses> SkyPass::readTileCounts() {
+  uint32_t header[kTileHeaderBytes / 4] = {};
+  vk::readbackBuffer(context_, *tiles_, header, sizeof(header));
+  std::array<uint32_t, gpu::kSkyTileClasses> counts{};
+  for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) counts[tileClass] = header[4 * tileClass];
+  return counts;
 }
 
 std::vector<glm::vec4> SkyPass::readSkyView() {

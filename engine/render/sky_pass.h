@@ -7,9 +7,10 @@
 // The tonemap pass (tonemap_pass.h) then maps the HDR target to the display.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <string_view>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -79,6 +80,11 @@ struct SkySettings {
   // show (SkyPass::composeRegion); off, over the whole image (the tests hold the two against each
   // other: the pictures are the same).
   bool regions = true;
+  // In tables mode, compose the tiles whose pixels all take one side of the compose's branch (the
+  // sky-view table, or the aerial-perspective volume) by pipelines without the other side's code
+  // (shaders/sky_classify.comp); off, every tile by the pipeline with both (the tests hold the two
+  // against each other: the pictures are the same).
+  bool tileClasses = true;
 };
 // Throws planet::Error naming the first bad field: samples outside 2..256, a non-positive
 // exposure, a cloud scale past 2.
@@ -110,13 +116,17 @@ struct SkyView {
   // A scene's other bodies, which may hide the sun from the air (eclipses): centres relative to
   // the camera, planet frame.
   std::vector<Occluder> occluders;
+  // Whether the depth holds only this body's surfaces, all below the top of its air (no other
+  // body, no rings, no terrain above the air): then a tile where every pixel shows geometry is
+  // composed by the aerial-perspective volume alone (shaders/sky_classify.comp).
+  bool ownSurfacesOnly = false;
 };
 
 class SkyPass {
  public:
   // Timing scopes a frame records at most: "sky" (the sky-view table), "aerial" (the
   // aerial-perspective volume), "clouds" (the cloud pass, half resolution) and "compose" (the
-  // reference mode records only "compose").
+  // tiles' classes, then the compose; the reference mode records only "compose", its march).
   static constexpr uint32_t kTimingScopes = 4;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
@@ -161,6 +171,10 @@ class SkyPass {
   bool skyViewBuilt() const { return buildSkyView_; }
   // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
+  // For tests: how many of the last frame's compose tiles were of each class (mixed, sky,
+  // aerial: shaders/shared/sky_params.h, kSkyTileMixed...), after a frame recorded in tables mode
+  // has completed.
+  std::array<uint32_t, gpu::kSkyTileClasses> readTileCounts();
 
   // Builds now the pipelines that a later change of settings (the clouds toggled) would build
   // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for
@@ -196,7 +210,9 @@ class SkyPass {
   vk::Owned<VkDescriptorPool> pool_;
   vk::Owned<VkPipelineLayout> layout_;
   // Made when first needed, [0] without clouds, [1] with (a frame in flight may still use the other).
-  vk::Owned<VkPipeline> tablesCompose_[2];          // sky.comp
+  vk::Owned<VkPipeline> tablesCompose_[2][gpu::kSkyTileClasses];  // sky.comp, [clouds][tile class]
+  vk::Owned<VkPipelineLayout> classifyLayout_;                    // the compose's set and a push constant
+  vk::Owned<VkPipeline> classify_;                                // sky_classify.comp (tables mode)
   vk::Owned<VkPipeline> referenceCompose_[2];       // sky.comp with SKY_REFERENCE
   vk::Owned<VkPipeline> cloudsPass_;                // sky_clouds.comp (tables mode)
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
@@ -225,6 +241,12 @@ class SkyPass {
   vk::Owned<vk::Image> cloudLight_;
   vk::Owned<vk::Image> cloudEnd_;
   bool cloudImagesInitialised_ = false;
+  // The compose's tiles by class (shaders/shared/sky_params.h, kSkyBindingTiles): the three
+  // indirect dispatches, then a list of tileCapacity_ (the image's tiles) per class.
+  static constexpr VkDeviceSize kTileHeaderBytes = 16 * gpu::kSkyTileClasses;
+  vk::Owned<vk::Buffer> tiles_;
+  uint32_t tileCapacity_ = 0;
+  bool ownSurfacesOnly_ = false;  // of the last prepare() (SkyView::ownSurfacesOnly)
 };
 
 }  // namespace planet

@@ -1,0 +1,46 @@
+#version 450
+// Sorts the tiles of the tables' compose (issue 21, point 7) by what their pixels need, before
+// it runs: on lavapipe every pixel pays for both sides of the compose's branch between the
+// sky-view table (a ray that met no geometry) and the aerial-perspective volume (one that did),
+// and from a plane or the ground most tiles are all sky or all ground. Each class is composed by
+// a pipeline of its own (sky.comp's kSpecTileClass) from the lists this pass writes
+// (kSkyBindingTiles), by an indirect dispatch. The class is read from the depth alone (a
+// per-pixel ray here cost as much as the compose saved):
+// - sky: no pixel of the tile shows geometry (depth 0), so every one takes the sky-view table;
+// - aerial: every pixel shows geometry and the frame's depth holds only this body's surfaces
+//   (SkyView::ownSurfacesOnly): those lie below the top of its air, so no ray meets them past
+//   the air's far side, and every pixel takes the aerial-perspective volume. Another body, or a
+//   ring, may lie past the air and take the sky-view table: with those in the frame such tiles
+//   are mixed;
+// - mixed: the rest, composed by the pipeline with both sides.
+// One invocation per tile of the compose's region (sky.region; the compose's workgroup size),
+// reading its pixels' depths in a loop: shared memory and barriers cost lavapipe more.
+#extension GL_GOOGLE_include_directive : require
+
+#include "sky_compose.glsl"
+
+layout(push_constant) uniform ClassifyPush {
+  uvec2 tiles;  // the region's tiles in x and y
+  uint classes;  // bit c set: tiles may be of class c (SkyPass::recordCompose), else they are mixed
+}
+push;
+
+void main() {
+  uvec2 tile = gl_GlobalInvocationID.xy;
+  if (tile.x >= push.tiles.x || tile.y >= push.tiles.y) return;
+  ivec2 corner = ivec2(sky.region.xy) + ivec2(tile * kSkyWorkgroupSize);
+  // The tile's pixels inside the image (the compose leaves those past its edge).
+  ivec2 end = min(corner + int(kSkyWorkgroupSize), ivec2(sky.extent.xy));
+  bool anySky = false, anyGeometry = false;
+  for (int y = corner.y; y < end.y; ++y) {
+    for (int x = corner.x; x < end.x; ++x) {
+      bool geometry = texelFetch(depthBuffer, ivec2(x, y), 0).r > 0.0f;
+      anySky = anySky || !geometry;
+      anyGeometry = anyGeometry || geometry;
+    }
+  }
+  uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
+  if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
+  uint index = atomicAdd(skyTiles.dispatches[tileClass].x, 1u);
+  skyTiles.tiles[tileClass * skyTiles.dispatches[0].w + index] = tile.x | (tile.y << 16u);
+}
