@@ -61,14 +61,14 @@ constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkImageUsageFlags kTableUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 // sky_classify.comp's push constant.
 struct ClassifyPush {
   uint32_t tilesX, tilesY;  // the compose region's tiles
   uint32_t classes;         // bit c set: tiles may be of class c (else they are mixed)
 };
-constexpr VkImageUsageFlags kTableUsage =
-    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 }  // namespace
 
