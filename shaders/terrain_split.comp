@@ -9,9 +9,10 @@
 // A pixel's height (terrain_surface.glsl) is the patch levels', the relief cube's or the
 // vertices' interpolation. None strays from the triangle's vertices by more than the terrain can
 // rise or fall across the triangle, bounded here by push.slope times its longest edge plus
-// push.marginM (kSplitSlope and kSplitMarginM, terrain_pass.cpp); the relief cube's averages, which can reach far lower, are read only where a pixel
-// spans kilometres, and triangles there are wider still. Same index positions in both lists,
-// the other list's triangle collapsed to one point (drawn as nothing), so each stays near to far.
+// push.marginM (kSplitSlope and kSplitMarginM, terrain_pass.cpp); the relief cube's averages,
+// which can reach far lower, are read only where a pixel spans kilometres, and triangles there
+// are wider still. Same index positions in both lists, the other list's triangle collapsed to
+// one point (drawn as nothing), so each stays near to far.
 layout(local_size_x = 64) in;
 
 layout(set = 0, binding = 0) readonly buffer Culled { uint culled[]; };
