@@ -305,8 +305,9 @@ TEST_F(TerrainRender, ShadingWithoutWhatTheViewCannotShowDrawsTheSamePicture) {
 
 // The ground whose triangles lie too far above sea level for any pixel to be under the sea is
 // drawn first with the early depth test (terrain_split.comp), the rest with its depth pushed back
-// as before: the pictures are the same bit for bit, inland, on a coast and from orbit, and the
-// early list holds most of the ground inland, part of it on the coast.
+// as before, and the water only over the latter: the pictures are the same bit for bit, inland,
+// on a coast and from orbit, and the early list holds most of the ground inland, part of it on
+// the coast.
 TEST_F(TerrainRender, GroundThatCannotBeSeaFloorIsDrawnFirstAndThePictureIsTheSame) {
   const PlanetDescription planet = resolvePreset("earth");
   RenderSettings unsplitSettings = smallSettings(true);

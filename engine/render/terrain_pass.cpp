@@ -940,8 +940,14 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
 void TerrainPass::recordWaterDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (!frame_.waterDrawn) return;
   // The sea over the ground, over the same ranges; the water pipeline shares the ground's layout.
+  // With the sea floor split, only over the triangles that can be sea floor: over the rest the
+  // ground stands above sea level at every pixel, so a ray to the sea there crosses the ground
+  // first (the mesh is one surface) and the depth test would hide all of it. On lavapipe the
+  // draw's vertices and triangles cost time all the same (1.2 ms of the water's 2.8 ms 50 m over
+  // land at 640×360).
   water_->bindPipeline(cmd);
   bindDrawState(cmd);
+  if (frame_.seaFloorSplit) vkCmdBindIndexBuffer(cmd, splitIndices_[slot_][1]->buffer, 0, VK_INDEX_TYPE_UINT32);
   water_->recordDraw(cmd, drawIndexCount_, timer);
 }
 
