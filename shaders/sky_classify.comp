@@ -14,16 +14,14 @@
 //   are mixed;
 // - mixed: the rest, composed by the pipeline with both sides.
 // One invocation per tile of the compose's region (sky.region; the compose's workgroup size),
-// reading its pixels' depths in a loop: shared memory and barriers cost lavapipe more.
+// reading its pixels' depths in a loop: shared memory and barriers cost lavapipe more. It also
+// keeps each tile's farthest depth, from which sky_cloud_classify.comp sorts the cloud pass's
+// tiles without reading the depth again.
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
 
-layout(push_constant) uniform ClassifyPush {
-  uvec2 tiles;  // the region's tiles in x and y
-  uint classes;  // bit c set: tiles may be of class c (SkyPass::recordCompose), else they are mixed
-}
-push;
+#include "sky_classify_push.glsl"
 
 void main() {
   uvec2 tile = gl_GlobalInvocationID.xy;
@@ -32,13 +30,19 @@ void main() {
   // The tile's pixels inside the image (the compose leaves those past its edge).
   ivec2 end = min(corner + int(kSkyWorkgroupSize), ivec2(sky.extent.xy));
   bool anySky = false, anyGeometry = false;
+  float farthest = 1.0f;  // reversed Z: the least depth
   for (int y = corner.y; y < end.y; ++y) {
     for (int x = corner.x; x < end.x; ++x) {
-      bool geometry = texelFetch(depthBuffer, ivec2(x, y), 0).r > 0.0f;
+      float depth = texelFetch(depthBuffer, ivec2(x, y), 0).r;
+      bool geometry = depth > 0.0f;
       anySky = anySky || !geometry;
       anyGeometry = anyGeometry || geometry;
+      farthest = min(farthest, depth);
     }
   }
+  // For the cloud pass's tiles (sky_cloud_classify.comp).
+  skyTiles.tiles[kSkyTileLists * skyTiles.dispatches[0].w + tile.y * push.tiles.x + tile.x] =
+      floatBitsToUint(anySky ? 0.0f : farthest);
   uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
   if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
   uint index = atomicAdd(skyTiles.dispatches[tileClass].x, 1u);

@@ -11,9 +11,15 @@
 // Per sample it writes the cloud's light already composited with the air in front of it (the
 // aerial-perspective volume at the distance its opacity is centred on) and its transmittance,
 // and the ray's end, its path through the layer before it and the shadow there (cloudSampleEnd).
+// It runs the tiles of sky_cloud_classify.comp's lists, each list with a pipeline of its own:
+// where no ray of a tile can reach the layer, the pipeline has no march (the march would find
+// nothing there and write the same).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
+
+// The list of tiles this pipeline runs (kSkyCloudTileMarch, kSkyCloudTileClear).
+layout(constant_id = 2) const uint kSpecCloudTileClass = kSkyCloudTileMarch;
 
 layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform writeonly image2D cloudSampleLight;
 layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2D cloudSampleEnd;
@@ -22,7 +28,10 @@ layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2
 const float kOneSurfaceRatio = 1.05f;
 
 void main() {
-  ivec2 cell = ivec2(gl_GlobalInvocationID.xy) + ivec2(sky.region.zw);  // the samples the compose reads
+  uint tile = skyTiles.tiles[kSpecCloudTileClass * skyTiles.dispatches[0].w + gl_WorkGroupID.x];
+  ivec2 group = ivec2(tile & 0xffffu, tile >> 16u);
+  // The samples the compose reads.
+  ivec2 cell = ivec2(sky.region.zw) + group * int(kSkyWorkgroupSize) + ivec2(gl_LocalInvocationID.xy);
   int scale = int(sky.cloudShape.w);
   if (any(greaterThanEqual(cell * scale, ivec2(sky.extent.xy)))) return;
   // The depth at the block's centre. Reversed Z stores 1 / view distance, which is affine across
@@ -44,7 +53,13 @@ void main() {
 
   vec3 light;
   float transmittance, tCloud;
-  cloudsAlong(ray, light, transmittance, tCloud);
+  if (kSpecCloudTileClass == kSkyCloudTileMarch) {
+    cloudsAlong(ray, light, transmittance, tCloud);
+  } else {  // what the march finds on a ray that ends before the layer
+    light = vec3(0.0f);
+    transmittance = 1.0f;
+    tCloud = -1.0f;
+  }
   // The layer seen through the air in front of it: that air's light where the cloud hides the
   // rest of the ray, and the cloud's own light through it (the compose adds the rest of the
   // ray's light times the cloud's transmittance).

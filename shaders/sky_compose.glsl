@@ -232,11 +232,16 @@ struct ViewRay {
   float tEnd;
 };
 
-ViewRay viewRay(vec2 screenPoint, float depth) {
-  ViewRay ray;
+// The unit direction (local frame) of the view ray through a point of the screen (in pixels).
+vec3 viewDirection(vec2 screenPoint) {
   vec2 ndc = screenPoint / sky.extent.xy * 2.0f - 1.0f;
   vec4 nearPoint = sky.clipToLocal * vec4(ndc, 1.0f, 1.0f);
-  ray.dir = normalize(nearPoint.xyz / nearPoint.w);
+  return normalize(nearPoint.xyz / nearPoint.w);
+}
+
+ViewRay viewRay(vec2 screenPoint, float depth) {
+  ViewRay ray;
+  ray.dir = viewDirection(screenPoint);
   ray.geometry = depth > 0.0f;
   // Reversed Z: depth = near / view distance; the ray length follows from the view axis.
   ray.tGeometry = ray.geometry ? sky.camera.y / depth / max(dot(ray.dir, sky.forward.xyz), 1e-6f) : kInfinity;
@@ -263,11 +268,12 @@ ViewRay viewRay(vec2 screenPoint, float depth) {
   return ray;
 }
 
-// The compose's tiles by class (kSkyBindingTiles): written by sky_classify.comp, read by the
-// tables' compose (sky.comp) and its indirect dispatches.
+// The compose's and the cloud pass's tiles by class (kSkyBindingTiles): written by
+// sky_classify.comp and sky_cloud_classify.comp, read by the tables' compose (sky.comp), the
+// cloud pass (sky_clouds.comp) and their indirect dispatches.
 layout(set = 0, binding = kSkyBindingTiles, std430) buffer SkyTiles {
-  uvec4 dispatches[kSkyTileClasses];  // x: the class's tiles; dispatches[0].w: each list's capacity
-  uint tiles[];
+  uvec4 dispatches[kSkyTileLists];  // x: the list's tiles; dispatches[0].w: each list's capacity
+  uint tiles[];                     // the lists, then the compose tiles' farthest depths
 }
 skyTiles;
 

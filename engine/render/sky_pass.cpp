@@ -14,6 +14,7 @@
 #include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
 #include "spv/sky_classify.comp.h"
+#include "spv/sky_cloud_classify.comp.h"
 #include "spv/sky_clouds.comp.h"
 #include "spv/sky_reference.comp.h"
 #include "spv/sky_view.comp.h"
@@ -64,10 +65,11 @@ constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
-// sky_classify.comp's push constant.
+// The tile classifiers' push constant (shaders/sky_classify_push.glsl).
 struct ClassifyPush {
-  uint32_t tilesX, tilesY;  // the compose region's tiles
-  uint32_t classes;         // bit c set: tiles may be of class c (else they are mixed)
+  uint32_t tilesX, tilesY;            // the compose region's tiles
+  uint32_t cloudTilesX, cloudTilesY;  // the cloud region's
+  uint32_t classes;                   // bit c set: tiles may be of class c (else they are mixed, or marched)
 };
 
 }  // namespace
@@ -240,9 +242,15 @@ void SkyPass::makePipelines(bool clouds) {
       tablesCompose_[clouds][tileClass] = {
           context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), classConstants)};
     }
-    if (clouds && !cloudsPass_.get())
-      cloudsPass_ = {
-          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp, layout_.get(), {constants, 1})};
+    if (clouds && !cloudsPass_[0].get()) {
+      cloudClassify_ = {
+          context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_cloud_classify_comp, classifyLayout_.get())};
+      for (uint32_t list = 0; list < 2; ++list) {
+        const uint32_t cloudConstants[] = {constants[0], constants[1], gpu::kSkyCloudTileMarch + list};
+        cloudsPass_[list] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp,
+                                                                           layout_.get(), cloudConstants)};
+      }
+    }
   }
   if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get())
     referenceCompose_[clouds] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp,
@@ -265,12 +273,13 @@ void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
   cloudLight_ = {context_, vk::createImage2D(context_, extent, kCloudLightFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
   cloudEnd_ = {context_, vk::createImage2D(context_, extent, kCloudEndFormat, VK_IMAGE_USAGE_STORAGE_BIT)};
   cloudImagesInitialised_ = false;
-  // The tile lists: room for every tile of the image in each class.
+  // The tile lists: room for every tile of the image in each class (the cloud pass has no more
+  // tiles than the compose: at most a sample per pixel), and each compose tile's depth.
   const uint32_t group = gpu::kSkyWorkgroupSize;
   tileCapacity_ = ((width_ + group - 1) / group) * ((height_ + group - 1) / group);
   tiles_.reset();
   tiles_ = {context_,
-            vk::createBuffer(context_, kTileHeaderBytes + VkDeviceSize(gpu::kSkyTileClasses) * tileCapacity_ * 4,
+            vk::createBuffer(context_, kTileHeaderBytes + VkDeviceSize(gpu::kSkyTileLists + 1) * tileCapacity_ * 4,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              vk::MemoryUsage::DeviceLocal)};
@@ -352,6 +361,10 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
                                             std::min((region.y1 + cloudScale_ - 1) / cloudScale_ + 1, samplesY)};
   u.region =
       glm::vec4(float(composeRegion_.x0), float(composeRegion_.y0), float(cloudRegion_.x0), float(cloudRegion_.y0));
+  // Below the cloud layer the whole image shows air, so both regions start at its corner and a
+  // cloud tile's pixels are those of whole compose tiles (sky_cloud_classify.comp).
+  clearCloudTiles_ = settings_.tileClasses && clouds && view.altitudeM < planet_.clouds.bottomM &&
+                     composeRegion_.x0 == 0 && composeRegion_.y0 == 0 && cloudRegion_.x0 == 0 && cloudRegion_.y0 == 0;
   for (int k = 0; k < kSkyIrradianceSamples; ++k)
     u.skyIrradiance[k] = tables_.skyIrradiance()[size_t(k)] * float(view.sunIrradianceScale);
   u.extent = glm::vec4(float(width), float(height), float(view.pixelAngleRad), view.drawSun ? 1.0f : 0.0f);
@@ -418,27 +431,19 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
   const bool clouds = cloudsDrawn();
-  if (tables && clouds) {
-    if (timer) timer->next(cmd, "clouds");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
-    // Only the samples the compose reads (prepare); none when nothing shows the air.
-    vkCmdDispatch(cmd, (cloudRegion_.width() + group - 1) / group, (cloudRegion_.height() + group - 1) / group, 1);
-    // The compose reads what the cloud pass wrote.
-    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  }
-  if (timer && tables) timer->next(cmd, "compose");
   const uint32_t groupsX = (composeRegion_.width() + group - 1) / group,
                  groupsY = (composeRegion_.height() + group - 1) / group;
   if (tables) {
-    // The region's tiles sorted by class (sky_classify.comp), then each class composed by its
-    // own pipeline, as many workgroups as the class has tiles. The lists are emptied first,
-    // after the previous frame's compose (earlier on the queue) has read them.
+    // The cloud pass's and the compose's tiles sorted by class (sky_cloud_classify.comp,
+    // sky_classify.comp); then each class run by its own pipeline, as many workgroups as the
+    // class has tiles. The lists are emptied first, after the previous frame's passes (earlier
+    // on the queue) have read them.
+    if (timer) timer->next(cmd, clouds ? "clouds" : "compose");
     vk::memoryBarrier(cmd, compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
     uint32_t header[kTileHeaderBytes / 4] = {};
-    for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass)
-      header[4 * tileClass + 1] = header[4 * tileClass + 2] = 1;  // y and z of each class's dispatch
+    for (uint32_t list = 0; list < gpu::kSkyTileLists; ++list)
+      header[4 * list + 1] = header[4 * list + 2] = 1;  // y and z of each list's dispatch
     header[3] = tileCapacity_;
     vkCmdUpdateBuffer(cmd, tiles_->buffer, 0, sizeof(header), header);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, compute,
@@ -448,15 +453,36 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                             nullptr);
     uint32_t classes = 0;
     if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (ownSurfacesOnly_ ? 1u << gpu::kSkyTileAerial : 0u);
-    const ClassifyPush push{groupsX, groupsY, classes};
+    if (clearCloudTiles_) classes |= 1u << gpu::kSkyCloudTileClear;
+    const uint32_t cloudGroupsX = (cloudRegion_.width() + group - 1) / group,
+                   cloudGroupsY = (cloudRegion_.height() + group - 1) / group;
+    const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes};
     vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     // One invocation per tile.
     vkCmdDispatch(cmd, (groupsX + group - 1) / group, (groupsY + group - 1) / group, 1);
+    if (clouds) {
+      // From the compose tiles' depths.
+      vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudClassify_.get());
+      vkCmdDispatch(cmd, (cloudGroupsX + group - 1) / group, (cloudGroupsY + group - 1) / group, 1);
+    }
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    // (The classify's layout has a push constant, so the set is bound again for the compose's.)
+    // (The classify's layout has a push constant, so the set is bound again for the passes'.)
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    if (clouds) {
+      // Only the samples the compose reads (prepare); none when nothing shows the air.
+      for (uint32_t list = 0; list < 2; ++list) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_[list].get());
+        vkCmdDispatchIndirect(cmd, tiles_->buffer, VkDeviceSize(16) * (gpu::kSkyCloudTileMarch + list));
+      }
+      // The compose reads what the cloud pass wrote.
+      vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      if (timer) timer->next(cmd, "compose");
+    }
     for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tablesCompose_[clouds][tileClass].get());
       vkCmdDispatchIndirect(cmd, tiles_->buffer, VkDeviceSize(16) * tileClass);
@@ -469,11 +495,11 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->end(cmd);
 }
 
-std::array<uint32_t, gpu::kSkyTileClasses> SkyPass::readTileCounts() {
+std::array<uint32_t, gpu::kSkyTileLists> SkyPass::readTileCounts() {
   uint32_t header[kTileHeaderBytes / 4] = {};
   vk::readbackBuffer(context_, *tiles_, header, sizeof(header));
-  std::array<uint32_t, gpu::kSkyTileClasses> counts{};
-  for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) counts[tileClass] = header[4 * tileClass];
+  std::array<uint32_t, gpu::kSkyTileLists> counts{};
+  for (uint32_t list = 0; list < gpu::kSkyTileLists; ++list) counts[list] = header[4 * list];
   return counts;
 }
 

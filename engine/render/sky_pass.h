@@ -82,8 +82,10 @@ struct SkySettings {
   bool regions = true;
   // In tables mode, compose the tiles whose pixels all take one side of the compose's branch (the
   // sky-view table, or the aerial-perspective volume) by pipelines without the other side's code
-  // (shaders/sky_classify.comp); off, every tile by the pipeline with both (the tests hold the two
-  // against each other: the pictures are the same).
+  // (shaders/sky_classify.comp), and run the cloud pass's tiles whose rays all end before the
+  // layer by a pipeline without the march (shaders/sky_cloud_classify.comp); off, every tile by
+  // the pipelines with everything (the tests hold the two against each other: the pictures are
+  // the same).
   bool tileClasses = true;
 };
 // Throws planet::Error naming the first bad field: samples outside 2..256, a non-positive
@@ -172,9 +174,11 @@ class SkyPass {
   // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
   // For tests: how many of the last frame's compose tiles were of each class (mixed, sky,
-  // aerial: shaders/shared/sky_params.h, kSkyTileMixed...), after a frame recorded in tables mode
-  // has completed.
-  std::array<uint32_t, gpu::kSkyTileClasses> readTileCounts();
+  // aerial: shaders/shared/sky_params.h, kSkyTileMixed...), and of its cloud tiles (marched,
+  // clear: kSkyCloudTileMarch...), after a frame recorded in tables mode has completed.
+  std::array<uint32_t, gpu::kSkyTileLists> readTileCounts();
+  // The last prepared frame's cloud samples (SkySettings::cloudScale pixels per sample each way).
+  const PixelRect& cloudRegion() const { return cloudRegion_; }
 
   // Builds now the pipelines that a later change of settings (the clouds toggled) would build
   // on first use, in the current mode: the viewer's and the soak's, so that no frame waits for
@@ -214,7 +218,8 @@ class SkyPass {
   vk::Owned<VkPipelineLayout> classifyLayout_;                    // the compose's set and a push constant
   vk::Owned<VkPipeline> classify_;                                // sky_classify.comp (tables mode)
   vk::Owned<VkPipeline> referenceCompose_[2];       // sky.comp with SKY_REFERENCE
-  vk::Owned<VkPipeline> cloudsPass_;                // sky_clouds.comp (tables mode)
+  vk::Owned<VkPipeline> cloudClassify_;             // sky_cloud_classify.comp (tables mode, clouds)
+  vk::Owned<VkPipeline> cloudsPass_[2];             // sky_clouds.comp, [0] the marched tiles, [1] the clear
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
   // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
   vk::Owned<vk::Image> skyView_;
@@ -241,12 +246,16 @@ class SkyPass {
   vk::Owned<vk::Image> cloudLight_;
   vk::Owned<vk::Image> cloudEnd_;
   bool cloudImagesInitialised_ = false;
-  // The compose's tiles by class (shaders/shared/sky_params.h, kSkyBindingTiles): the three
-  // indirect dispatches, then a list of tileCapacity_ (the image's tiles) per class.
-  static constexpr VkDeviceSize kTileHeaderBytes = 16 * gpu::kSkyTileClasses;
+  // The compose's and the cloud pass's tiles by class (shaders/shared/sky_params.h,
+  // kSkyBindingTiles): the indirect dispatches, then a list of tileCapacity_ (the image's tiles)
+  // per class, then the compose tiles' farthest depths.
+  static constexpr VkDeviceSize kTileHeaderBytes = 16 * gpu::kSkyTileLists;
   vk::Owned<vk::Buffer> tiles_;
   uint32_t tileCapacity_ = 0;
   bool ownSurfacesOnly_ = false;  // of the last prepare() (SkyView::ownSurfacesOnly)
+  // Of the last prepare(): the cloud pass may leave out the march in tiles whose rays all end
+  // before the layer (the camera is below it, and both regions start at the image's corner).
+  bool clearCloudTiles_ = false;
 };
 
 }  // namespace planet

@@ -32,16 +32,24 @@ GPU_CONST uint kSkyBindingCloudLight = 9u;  // image2D rgba16f: rgb the cloud's 
                                             // of it, a its transmittance
 GPU_CONST uint kSkyBindingCloudEnd = 10u;   // image2D rgba32f: x the distance to the drawn surface (kInfinity: none),
                                             // y the ray's path through the layer before its end, z the shadow there
-// The compose's tiles (one workgroup each) by what their pixels need (sky_classify.comp writes
-// them each frame, the tables' compose reads them): a storage buffer of kSkyTileClasses
-// VkDispatchIndirectCommand (x: the class's tile count, y = z = 1, each padded to 16 bytes; the
-// first's padding holds the capacity of each list), then the lists, class c's from
-// c × capacity, each tile as x | y << 16 in workgroups from the compose region's corner.
+// The compose's and the cloud pass's tiles (one workgroup each) by what their pixels need
+// (sky_classify.comp and sky_cloud_classify.comp write them each frame, the tables' compose and
+// the cloud pass read them): a storage buffer of kSkyTileLists VkDispatchIndirectCommand (x: the
+// list's tile count, y = z = 1, each padded to 16 bytes; the first's padding holds the capacity
+// of each list), then the lists, list c's from c × capacity, each tile as x | y << 16 in
+// workgroups from its pass's region's corner; then, at kSkyTileLists × capacity, each compose
+// tile's farthest depth (row by row; 0 where a pixel shows no geometry), for the cloud tiles.
 GPU_CONST uint kSkyBindingTiles = 11u;
 GPU_CONST uint kSkyTileMixed = 0u;   // pixels of both kinds, or of geometry past the air
 GPU_CONST uint kSkyTileSky = 1u;     // no pixel shows geometry: the sky-view table's
 GPU_CONST uint kSkyTileAerial = 2u;  // every pixel shows geometry inside the air: the aerial volume's
 GPU_CONST uint kSkyTileClasses = 3u;
+// The cloud pass's tiles (8 × 8 samples): those whose rays may meet the layer, and those whose
+// every ray ends before it can (from below the layer's base, at geometry nearer than where the
+// ray leaves the ball under the base), which take no march.
+GPU_CONST uint kSkyCloudTileMarch = 3u;
+GPU_CONST uint kSkyCloudTileClear = 4u;
+GPU_CONST uint kSkyTileLists = 5u;
 
 // The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
 // aerial_perspective.comp before the compose pass, from the same SkyUniforms.

@@ -1,0 +1,81 @@
+#version 450
+// Sorts the cloud pass's tiles (8 × 8 samples, a workgroup of sky_clouds.comp each) into those
+// whose rays may meet the cloud layer and those whose every ray ends before it can (issue 21,
+// point 7): on lavapipe every sample pays for the layer's march, met or not, and from below the
+// layer most of the ground's samples cannot meet it. Each list is run by a pipeline of its own
+// (sky_clouds.comp's kSpecCloudTileClass), by an indirect dispatch.
+//
+// From below the layer's base a ray stays inside the ball under the base until it leaves it, so
+// one that ends at geometry before that exit distance never enters the layer, mountains or not
+// (sky_compose.glsl, layerIntervals: its one stretch starts at the exit). For the tile's samples:
+// - the end: a sample's ray ends at its block's depth (the mean of its pixels' depths or the
+//   nearest of them, sky_clouds.comp), never farther than the tile's farthest pixel. That is the
+//   least depth of the compose tiles under the samples' pixels (sky_classify.comp keeps it;
+//   0 where a pixel shows no geometry). Along a direction at cosine c to the view axis, depth d
+//   lies at distance near / (d c), so the farthest end is near / (d_min c_min);
+// - the exit distance falls as the ray turns upward, so the nearest is that of the tile's most
+//   upward ray. No direction of the tile is farther from the tile's centre than one of its
+//   corners (the screen rectangle's directions are a convex spherical polygon), so none is
+//   closer to the zenith than the centre's zenith angle less that angle.
+// The tile takes no march when the farthest end lies before the nearest exit, with a margin for
+// rounding. The CPU allows the class (push.classes) only when the camera is below the layer and
+// both passes' regions start at the image's corner, so the compose tiles under a cloud tile are
+// those of its pixels' rectangle.
+#extension GL_GOOGLE_include_directive : require
+
+#include "sky_compose.glsl"
+
+#include "sky_classify_push.glsl"
+
+// A tile ends its rays before the layer only if the farthest end is within this share of the
+// nearest exit (the shader's float rounding against the bound's).
+const float kExitMargin = 0.99f;
+
+// Whether no ray of cloud tile `tile` can reach the layer (see the top of the file).
+bool raysEndBeforeLayer(uvec2 tile) {
+  float R = sky.atmosphere.radii.x;
+  float h = sky.camera.x;
+  float bottom = sky.clouds.x;
+  if (h >= bottom) return false;
+  // The pixels the tile's samples read, and the compose tiles that hold them.
+  uint scale = uint(sky.cloudShape.w);
+  uvec2 last = uvec2(sky.extent.xy) - 1u;
+  uvec2 firstPixel = tile * kSkyWorkgroupSize * scale;
+  if (any(greaterThan(firstPixel, last))) return false;
+  uvec2 lastPixel = min(firstPixel + kSkyWorkgroupSize * scale - 1u, last);
+  uvec2 from = firstPixel / kSkyWorkgroupSize, to = lastPixel / kSkyWorkgroupSize;
+  uint depths = kSkyTileLists * skyTiles.dispatches[0].w;
+  float farthest = 1.0f;
+  for (uint y = from.y; y <= to.y; ++y)
+    for (uint x = from.x; x <= to.x; ++x)
+      farthest = min(farthest, uintBitsToFloat(skyTiles.tiles[depths + y * push.tiles.x + x]));
+  if (farthest <= 0.0f) return false;
+  // The samples' centres span this rectangle of the screen.
+  vec2 lo = (vec2(tile * kSkyWorkgroupSize) + 0.5f) * float(scale);
+  vec2 hi = lo + float((kSkyWorkgroupSize - 1u) * scale);
+  vec3 centre = viewDirection(0.5f * (lo + hi));
+  float cosRadius = 1.0f, cosForward = 1.0f;
+  for (int k = 0; k < 4; ++k) {
+    vec3 corner = viewDirection(vec2((k & 1) == 0 ? lo.x : hi.x, (k & 2) == 0 ? lo.y : hi.y));
+    cosRadius = min(cosRadius, dot(corner, centre));
+    cosForward = min(cosForward, dot(corner, sky.forward.xyz));
+  }
+  // The highest direction's zenith cosine: cos(max(θ_centre − radius, 0)), a little more for rounding.
+  float muCentre = centre.z;
+  float sinCentre = sqrt(max(1.0f - muCentre * muCentre, 0.0f));
+  float sinRadius = sqrt(max(1.0f - cosRadius * cosRadius, 0.0f));
+  float muHighest = muCentre >= cosRadius ? 1.0f : muCentre * cosRadius + sinCentre * sinRadius;
+  muHighest = min(muHighest + 1e-4f, 1.0f);
+  float nearestExit = raySphere(R, h, muHighest, bottom).x;  // from inside: the way out
+  float farthestEnd = sky.camera.y / farthest / max(cosForward, 1e-6f);
+  return farthestEnd < kExitMargin * nearestExit;
+}
+
+void main() {
+  uvec2 tile = gl_GlobalInvocationID.xy;
+  if (tile.x >= push.cloudTiles.x || tile.y >= push.cloudTiles.y) return;
+  bool clear = (push.classes & (1u << kSkyCloudTileClear)) != 0u && raysEndBeforeLayer(tile);
+  uint list = clear ? kSkyCloudTileClear : kSkyCloudTileMarch;
+  uint index = atomicAdd(skyTiles.dispatches[list].x, 1u);
+  skyTiles.tiles[list * skyTiles.dispatches[0].w + index] = tile.x | (tile.y << 16u);
+}
