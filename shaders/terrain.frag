@@ -60,7 +60,12 @@ layout(location = 0) out vec4 outColor;
 // hidden ground costs no shading.
 layout(early_fragment_tests) in;
 #define WRITE_DEPTH(depth)
+// No pixel it draws is sea floor: the planet has no sea, or the ground is the split's that lies
+// above sea level at every pixel (terrain_split.comp). Without the branch's code, as lavapipe
+// would run it for every pixel.
+const bool kSeaFloorPossible = false;
 #else
+const bool kSeaFloorPossible = true;
 // With a sea, the shader writes its depth (to push ground under the sea back, main below). On
 // lavapipe that moves the depth test after the shader, whatever the layout below says, so every
 // hidden fragment is shaded; a full-screen pass that pushed the sea floor back instead (from a
@@ -159,7 +164,7 @@ void main() {
   vec3 sun = frame.sunLocal.xyz;
   vec3 albedo;
   vec3 emitted = vec3(0.0f);  // city lights, before the dusk fade
-  if (ocean && height < seaLevel) {
+  if (kSeaFloorPossible && ocean && height < seaLevel) {
     // Under water at this pixel, though the triangle may be above sea level: the mesh is
     // coarser than the patch heights, and near a coast it often is. Pushed back to twice its
     // distance, it cannot hide the sea surface in front of it, so the water pass draws the sea
