@@ -22,6 +22,11 @@ layout(set = 0, binding = kSkyTableBindingAerialTransmittance, rgba16f) uniform 
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
 // Eclipses: each sample's light is scaled by the share of the sun it sees past the scene's other
 // bodies, at its place on the column's ray (where the march starts, plus t along the ray).
+// Whether another body can hide the sun (a scene) is a specialization constant (SkyPass): with
+// none the loop over occluders has a constant count and no code, where lavapipe ran its body at
+// every step of every column (the build 2.3-2.7 → 1.0-1.1 ms at 640×360).
+layout(constant_id = 0) const bool kSpecEclipses = true;
+#define ECLIPSE_POSSIBLE kSpecEclipses
 #include "common/eclipse.glsl"
 vec3 marchStart;  // local frame, from the camera
 vec3 marchDirection;

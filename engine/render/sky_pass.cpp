@@ -227,8 +227,9 @@ void SkyPass::makePipelines(bool clouds) {
   if (settings_.mode == SkyMode::Tables) {
     if (!skyViewBuild_.get()) {
       skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
-      aerialBuild_ = {context_,
-                      vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp, tableLayout_.get())};
+      // Specialized on the eclipses (constant 0, as the compose's).
+      aerialBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
+                                                                    tableLayout_.get(), {specialization_[0], 1})};
     }
     if (!classify_.get()) {
       classifyLayout_ = {context_, vk::createPipelineLayout(context_, setLayout_.get(), sizeof(ClassifyPush),
