@@ -133,8 +133,7 @@ void main() {
 #ifdef SKY_REFERENCE
   ivec2 group = ivec2(gl_WorkGroupID.xy);
 #else
-  uint tile = skyTiles.tiles[kSpecTileClass * skyTiles.dispatches[0].w + gl_WorkGroupID.x];
-  ivec2 group = ivec2(tile & 0xffffu, tile >> 16u);
+  ivec2 group = listedTile(kSpecTileClass, gl_WorkGroupID.x);
 #endif
   ivec2 pixel = ivec2(sky.region.xy) + group * int(kSkyWorkgroupSize) + ivec2(gl_LocalInvocationID.xy);
   if (pixel.x >= int(sky.extent.x) || pixel.y >= int(sky.extent.y)) return;

@@ -41,10 +41,8 @@ void main() {
     }
   }
   // For the cloud pass's tiles (sky_cloud_classify.comp).
-  skyTiles.tiles[kSkyTileLists * skyTiles.dispatches[0].w + tile.y * push.tiles.x + tile.x] =
-      floatBitsToUint(anySky ? 0.0f : farthest);
+  skyTiles.tiles[farthestDepthSlot(tile, push.tiles.x)] = floatBitsToUint(anySky ? 0.0f : farthest);
   uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
   if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
-  uint index = atomicAdd(skyTiles.dispatches[tileClass].x, 1u);
-  skyTiles.tiles[tileClass * skyTiles.dispatches[0].w + index] = tile.x | (tile.y << 16u);
+  appendTile(tileClass, tile);
 }

@@ -44,11 +44,10 @@ bool raysEndBeforeLayer(uvec2 tile) {
   if (any(greaterThan(firstPixel, last))) return false;
   uvec2 lastPixel = min(firstPixel + kSkyWorkgroupSize * scale - 1u, last);
   uvec2 from = firstPixel / kSkyWorkgroupSize, to = lastPixel / kSkyWorkgroupSize;
-  uint depths = kSkyTileLists * skyTiles.dispatches[0].w;
   float farthest = 1.0f;
   for (uint y = from.y; y <= to.y; ++y)
     for (uint x = from.x; x <= to.x; ++x)
-      farthest = min(farthest, uintBitsToFloat(skyTiles.tiles[depths + y * push.tiles.x + x]));
+      farthest = min(farthest, uintBitsToFloat(skyTiles.tiles[farthestDepthSlot(uvec2(x, y), push.tiles.x)]));
   if (farthest <= 0.0f) return false;
   // The samples' centres span this rectangle of the screen.
   vec2 lo = (vec2(tile * kSkyWorkgroupSize) + 0.5f) * float(scale);
@@ -75,7 +74,5 @@ void main() {
   uvec2 tile = gl_GlobalInvocationID.xy;
   if (tile.x >= push.cloudTiles.x || tile.y >= push.cloudTiles.y) return;
   bool clear = (push.classes & (1u << kSkyCloudTileClear)) != 0u && raysEndBeforeLayer(tile);
-  uint list = clear ? kSkyCloudTileClear : kSkyCloudTileMarch;
-  uint index = atomicAdd(skyTiles.dispatches[list].x, 1u);
-  skyTiles.tiles[list * skyTiles.dispatches[0].w + index] = tile.x | (tile.y << 16u);
+  appendTile(clear ? kSkyCloudTileClear : kSkyCloudTileMarch, tile);
 }

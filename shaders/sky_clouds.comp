@@ -28,8 +28,7 @@ layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2
 const float kOneSurfaceRatio = 1.05f;
 
 void main() {
-  uint tile = skyTiles.tiles[kSpecCloudTileClass * skyTiles.dispatches[0].w + gl_WorkGroupID.x];
-  ivec2 group = ivec2(tile & 0xffffu, tile >> 16u);
+  ivec2 group = listedTile(kSpecCloudTileClass, gl_WorkGroupID.x);
   // The samples the compose reads.
   ivec2 cell = ivec2(sky.region.zw) + group * int(kSkyWorkgroupSize) + ivec2(gl_LocalInvocationID.xy);
   int scale = int(sky.cloudShape.w);

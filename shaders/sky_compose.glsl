@@ -277,6 +277,23 @@ layout(set = 0, binding = kSkyBindingTiles, std430) buffer SkyTiles {
 }
 skyTiles;
 
+// Tile `index` of list `list`, in workgroups from its pass's region's corner.
+ivec2 listedTile(uint list, uint index) {
+  uint tile = skyTiles.tiles[list * skyTiles.dispatches[0].w + index];
+  return ivec2(tile & 0xffffu, tile >> 16u);
+}
+
+// Appends `tile` to list `list` (the classify passes).
+void appendTile(uint list, uvec2 tile) {
+  uint index = atomicAdd(skyTiles.dispatches[list].x, 1u);
+  skyTiles.tiles[list * skyTiles.dispatches[0].w + index] = tile.x | (tile.y << 16u);
+}
+
+// Where compose tile `tile` of a region `tilesX` tiles wide keeps its farthest depth.
+uint farthestDepthSlot(uvec2 tile, uint tilesX) {
+  return kSkyTileLists * skyTiles.dispatches[0].w + tile.y * tilesX + tile.x;
+}
+
 // Whether the frame draws clouds (the preset has them, they are on, and there is air). Also as a
 // specialization constant (SkyPass::cloudsDrawn), so that a pipeline without them has no cloud
 // code: lavapipe runs every branch for every pixel.

@@ -246,7 +246,7 @@ void SkyPass::makePipelines(bool clouds) {
     if (clouds && !cloudsPass_[0].get()) {
       cloudClassify_ = {
           context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_cloud_classify_comp, classifyLayout_.get())};
-      for (uint32_t list = 0; list < 2; ++list) {
+      for (uint32_t list = 0; list < kCloudTileClasses; ++list) {
         const uint32_t cloudConstants[] = {constants[0], constants[1], gpu::kSkyCloudTileMarch + list};
         cloudsPass_[list] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp,
                                                                            layout_.get(), cloudConstants)};
@@ -475,7 +475,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
     if (clouds) {
       // Only the samples the compose reads (prepare); none when nothing shows the air.
-      for (uint32_t list = 0; list < 2; ++list) {
+      for (uint32_t list = 0; list < kCloudTileClasses; ++list) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudsPass_[list].get());
         vkCmdDispatchIndirect(cmd, tiles_->buffer, VkDeviceSize(16) * (gpu::kSkyCloudTileMarch + list));
       }

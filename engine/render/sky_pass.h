@@ -219,7 +219,9 @@ class SkyPass {
   vk::Owned<VkPipeline> classify_;                                // sky_classify.comp (tables mode)
   vk::Owned<VkPipeline> referenceCompose_[2];       // sky.comp with SKY_REFERENCE
   vk::Owned<VkPipeline> cloudClassify_;             // sky_cloud_classify.comp (tables mode, clouds)
-  vk::Owned<VkPipeline> cloudsPass_[2];             // sky_clouds.comp, [0] the marched tiles, [1] the clear
+  // The cloud pass's tile classes: lists kSkyCloudTileMarch .. kSkyTileLists − 1.
+  static constexpr uint32_t kCloudTileClasses = gpu::kSkyTileLists - gpu::kSkyCloudTileMarch;
+  vk::Owned<VkPipeline> cloudsPass_[kCloudTileClasses];  // sky_clouds.comp, [0] the marched tiles, [1] the clear
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
   // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
   vk::Owned<vk::Image> skyView_;
