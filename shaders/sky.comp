@@ -23,11 +23,12 @@
 #include "sky_compose.glsl"
 
 #ifndef SKY_REFERENCE
-// The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial), as a
-// specialization constant: each class's tiles are dispatched by a pipeline of their own
-// (SkyPass::recordCompose, from the lists of sky_classify.comp), so that a tile of sky runs no
-// aerial-perspective code and a tile of ground no sky-view code: lavapipe runs both sides of a
-// branch for every pixel.
+// The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial,
+// kSkyTileAerialClear), as a specialization constant: each class's tiles are dispatched by a
+// pipeline of their own (SkyPass::recordCompose, from the lists of sky_classify.comp and
+// sky_cloud_classify.comp), so that a tile of sky runs no aerial-perspective code, a tile of
+// ground no sky-view code, and a tile of ground clear of the clouds no read of their light:
+// lavapipe runs both sides of a branch for every pixel.
 layout(constant_id = 2) const uint kSpecTileClass = kSkyTileMixed;
 
 layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform readonly image2D cloudSampleLight;
@@ -49,13 +50,17 @@ const float kDistanceTolerance = 0.1f;
 // takes its clouds from the sky samples and the mountain none from them (the cloud pass ends a
 // sample's ray at the nearer surface of its block, so each side has samples of its own). The
 // shadow counts only samples of drawn surfaces at a distance like this pixel's.
-void upsampledClouds(ivec2 pixel, ViewRay ray, out vec3 composite, out float transmittance, out float shadow) {
+// With `clear` (a tile of kSkyTileAerialClear: every ray of its pixels and of the samples they read
+// ends before the layer) the samples' light is known without reading it, (0, 0, 0, 1), and every
+// path through the layer is 0: the weights are the bilinear ones, as the general code finds them.
+void upsampledClouds(ivec2 pixel, ViewRay ray, bool clear, out vec3 composite, out float transmittance,
+                     out float shadow) {
   float scale = sky.cloudShape.w;
   ivec2 last = (ivec2(sky.extent.xy) + int(scale) - 1) / int(scale) - 1;
   vec2 q = (vec2(pixel) + 0.5f) / scale - 0.5f;  // sample i is centred on pixel edge scale · (i + 1/2)
   vec2 base = floor(q);
   vec2 f = q - base;
-  float pathHere = layerPathBefore(ray.dir, ray.tEnd);
+  float pathHere = clear ? 0.0f : layerPathBefore(ray.dir, ray.tEnd);
   vec4 light[4];
   vec4 end[4];
   float bilinear[4], pathMismatch[4], distanceMismatch[4];
@@ -63,10 +68,10 @@ void upsampledClouds(ivec2 pixel, ViewRay ray, out vec3 composite, out float tra
   for (int k = 0; k < 4; ++k) {
     ivec2 offset = ivec2(k & 1, k >> 1);
     ivec2 cell = clamp(ivec2(base) + offset, ivec2(0), last);
-    light[k] = imageLoad(cloudSampleLight, cell);
+    light[k] = clear ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : imageLoad(cloudSampleLight, cell);
     end[k] = imageLoad(cloudSampleEnd, cell);  // x: distance to the drawn surface, y: layer path, z: shadow
     bilinear[k] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
-    float path = end[k].y;
+    float path = clear ? 0.0f : end[k].y;
     float x = abs(path - pathHere) / (kPathTolerance * max(path, pathHere) + kPathSlackM);
     pathMismatch[k] = min(x * x, 1e4f);
     bestPath = min(bestPath, pathMismatch[k]);
@@ -144,7 +149,7 @@ void main() {
 #ifdef SKY_REFERENCE
   bool geometry = ray.geometry;
 #else
-  bool geometry = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass == kSkyTileAerial ? true : ray.geometry;
+  bool geometry = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : ray.geometry;
 #endif
   float tGeometry = ray.tGeometry;
   bool seesGround = ray.seesGround;
@@ -210,11 +215,15 @@ void main() {
   cloudComposite = vec3(0.0f);
   cloudTransmittance = 1.0f;
   cloudShadowFactor = 1.0f;
-  if (kSpecClouds) upsampledClouds(pixel, ray, cloudComposite, cloudTransmittance, cloudShadowFactor);
+  if (kSpecClouds)
+    upsampledClouds(pixel, ray, kSpecTileClass == kSkyTileAerialClear, cloudComposite, cloudTransmittance,
+                    cloudShadowFactor);
   if (geometry) surface *= cloudShadowFactor;
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
-    vec2 stretch = atmosphereStretch(a, h, mu, hGround);
+    // (A tile clear of the clouds is seen from below them, so from inside the air: its columns
+    // need no stretch, sky_aerial.glsl.)
+    vec2 stretch = kSpecTileClass == kSkyTileAerialClear ? vec2(0.0f, -1.0f) : atmosphereStretch(a, h, mu, hGround);
     vec2 columnStretch = aerialColumnStretchOf(stretch, ray.groundHits, R, h, mu);
     // Geometry past the far side of the air (another body, a ring, seen through this one's
     // limb or from under its sky) is seen through the whole crossing, as the sky around it is:
@@ -226,9 +235,7 @@ void main() {
 #ifdef SKY_REFERENCE
     bool aerial = geometry && !pastAir;
 #else
-    bool aerial = kSpecTileClass == kSkyTileAerial ? true
-                  : kSpecTileClass == kSkyTileSky  ? false
-                                                   : geometry && !pastAir;
+    bool aerial = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : geometry && !pastAir;
 #endif
     if (aerial) {
       aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);

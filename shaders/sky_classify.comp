@@ -13,6 +13,9 @@
 //   ring, may lie past the air and take the sky-view table: with those in the frame such tiles
 //   are mixed;
 // - mixed: the rest, composed by the pipeline with both sides.
+// From below the cloud layer (the classes' kSkyTileAerialClear bit), the aerial tiles are left
+// to sky_cloud_classify.comp, which lists each as aerial or as clear of the clouds from its
+// neighbours' farthest depths, written here.
 // One invocation per tile of the compose's region (sky.region; the compose's workgroup size),
 // reading its pixels' depths in a loop: shared memory and barriers cost lavapipe more. It also
 // keeps each tile's farthest depth, from which sky_cloud_classify.comp sorts the cloud pass's
@@ -44,5 +47,8 @@ void main() {
   skyTiles.tiles[farthestDepthSlot(tile, push.tiles.x)] = floatBitsToUint(anySky ? 0.0f : farthest);
   uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
   if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
+  // Aerial tiles that may be clear of the cloud layer are listed by sky_cloud_classify.comp,
+  // which needs their neighbours' depths.
+  if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialClear)) != 0u) return;
   appendTile(tileClass, tile);
 }

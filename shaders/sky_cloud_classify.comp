@@ -21,6 +21,10 @@
 // rounding. The CPU allows the class (push.classes) only when the camera is below the layer and
 // both passes' regions start at the image's corner, so the compose tiles under a cloud tile are
 // those of its pixels' rectangle.
+//
+// With the same bound it lists the compose's ground tiles under each cloud tile as clear of the
+// clouds or not (kSkyTileAerialClear, kSkyTileAerial; sky_classify.comp leaves them here): a
+// clear tile's pipeline reads no cloud light and no path through the layer, only the shadow.
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
@@ -31,27 +35,23 @@
 // nearest exit (the shader's float rounding against the bound's).
 const float kExitMargin = 0.99f;
 
-// Whether no ray of cloud tile `tile` can reach the layer (see the top of the file).
-bool raysEndBeforeLayer(uvec2 tile) {
-  float R = sky.atmosphere.radii.x;
-  float h = sky.camera.x;
-  float bottom = sky.clouds.x;
-  if (h >= bottom) return false;
-  // The pixels the tile's samples read, and the compose tiles that hold them.
-  uint scale = uint(sky.cloudShape.w);
-  uvec2 last = uvec2(sky.extent.xy) - 1u;
-  uvec2 firstPixel = tile * kSkyWorkgroupSize * scale;
-  if (any(greaterThan(firstPixel, last))) return false;
-  uvec2 lastPixel = min(firstPixel + kSkyWorkgroupSize * scale - 1u, last);
-  uvec2 from = firstPixel / kSkyWorkgroupSize, to = lastPixel / kSkyWorkgroupSize;
+// The least depth (reversed Z: the farthest surface) of compose tiles `from` to `to` (inclusive),
+// 0 where a pixel of them shows no geometry (sky_classify.comp).
+float farthestDepthOf(uvec2 from, uvec2 to) {
   float farthest = 1.0f;
   for (uint y = from.y; y <= to.y; ++y)
     for (uint x = from.x; x <= to.x; ++x)
       farthest = min(farthest, uintBitsToFloat(skyTiles.tiles[farthestDepthSlot(uvec2(x, y), push.tiles.x)]));
-  if (farthest <= 0.0f) return false;
-  // The samples' centres span this rectangle of the screen.
-  vec2 lo = (vec2(tile * kSkyWorkgroupSize) + 0.5f) * float(scale);
-  vec2 hi = lo + float((kSkyWorkgroupSize - 1u) * scale);
+  return farthest;
+}
+
+// Whether no view ray through the screen rectangle [lo, hi] (pixels) that ends at a depth of at
+// least `farthest` (reversed Z) can reach the layer (see the top of the file).
+bool raysEndBeforeLayer(vec2 lo, vec2 hi, float farthest) {
+  float R = sky.atmosphere.radii.x;
+  float h = sky.camera.x;
+  float bottom = sky.clouds.x;
+  if (h >= bottom || farthest <= 0.0f) return false;
   vec3 centre = viewDirection(0.5f * (lo + hi));
   float cosRadius = 1.0f, cosForward = 1.0f;
   for (int k = 0; k < 4; ++k) {
@@ -73,6 +73,37 @@ bool raysEndBeforeLayer(uvec2 tile) {
 void main() {
   uvec2 tile = gl_GlobalInvocationID.xy;
   if (tile.x >= push.cloudTiles.x || tile.y >= push.cloudTiles.y) return;
-  bool clear = (push.classes & (1u << kSkyCloudTileClear)) != 0u && raysEndBeforeLayer(tile);
+  // The pixels the tile's samples read, and the compose tiles that hold them.
+  uint scale = uint(sky.cloudShape.w);
+  uvec2 last = uvec2(sky.extent.xy) - 1u;
+  uvec2 firstPixel = tile * kSkyWorkgroupSize * scale;
+  bool inside = all(lessThanEqual(firstPixel, last));
+  uvec2 lastPixel = min(firstPixel + kSkyWorkgroupSize * scale - 1u, last);
+  uvec2 from = firstPixel / kSkyWorkgroupSize, to = lastPixel / kSkyWorkgroupSize;
+  bool clear = false;
+  if ((push.classes & (1u << kSkyCloudTileClear)) != 0u && inside) {
+    // The samples' centres span this rectangle of the screen.
+    vec2 lo = (vec2(tile * kSkyWorkgroupSize) + 0.5f) * float(scale);
+    vec2 hi = lo + float((kSkyWorkgroupSize - 1u) * scale);
+    clear = raysEndBeforeLayer(lo, hi, farthestDepthOf(from, to));
+  }
   appendTile(clear ? kSkyCloudTileClear : kSkyCloudTileMarch, tile);
+  // The ground's compose tiles under this one (sky_classify.comp left them to this pass): clear
+  // when every ray of their pixels and of the cloud samples they read ends before the layer. A
+  // pixel reads the four samples around its centre, whose blocks of pixels lie within 1.5 samples
+  // (3 pixels at half resolution) of it, so within the tile's neighbours: their rectangle and
+  // their depths bound those rays.
+  if ((push.classes & (1u << kSkyTileAerialClear)) == 0u || !inside) return;
+  to = min(to, push.tiles - 1u);
+  for (uint y = from.y; y <= to.y; ++y) {
+    for (uint x = from.x; x <= to.x; ++x) {
+      uvec2 composeTile = uvec2(x, y);
+      if (!(uintBitsToFloat(skyTiles.tiles[farthestDepthSlot(composeTile, push.tiles.x)]) > 0.0f)) continue;
+      uvec2 near = max(composeTile, 1u) - 1u, far = min(composeTile + 1u, push.tiles - 1u);
+      vec2 lo = vec2(near * kSkyWorkgroupSize);
+      vec2 hi = min(vec2((far + 1u) * kSkyWorkgroupSize), sky.extent.xy);
+      bool clearTile = raysEndBeforeLayer(lo, hi, farthestDepthOf(near, far));
+      appendTile(clearTile ? kSkyTileAerialClear : kSkyTileAerial, composeTile);
+    }
+  }
 }

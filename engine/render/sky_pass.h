@@ -174,8 +174,8 @@ class SkyPass {
   // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
   // For tests: how many of the last frame's compose tiles were of each class (mixed, sky,
-  // aerial: shaders/shared/sky_params.h, kSkyTileMixed...), and of its cloud tiles (marched,
-  // clear: kSkyCloudTileMarch...), after a frame recorded in tables mode has completed.
+  // aerial, aerial clear of the clouds: shaders/shared/sky_params.h, kSkyTileMixed...), and of its cloud tiles
+  // (marched, clear: kSkyCloudTileMarch...), after a frame recorded in tables mode has completed.
   std::array<uint32_t, gpu::kSkyTileLists> readTileCounts();
   // The last prepared frame's cloud samples (SkySettings::cloudScale pixels per sample each way).
   const PixelRect& cloudRegion() const { return cloudRegion_; }
@@ -258,6 +258,7 @@ class SkyPass {
   // Of the last prepare(): the cloud pass may leave out the march in tiles whose rays all end
   // before the layer (the camera is below it, and both regions start at the image's corner).
   bool clearCloudTiles_ = false;
+  bool cameraInAir_ = false;  // of the last prepare(): below the top of the atmosphere
 };
 
 }  // namespace planet

@@ -43,13 +43,17 @@ GPU_CONST uint kSkyBindingTiles = 11u;
 GPU_CONST uint kSkyTileMixed = 0u;   // pixels of both kinds, or of geometry past the air
 GPU_CONST uint kSkyTileSky = 1u;     // no pixel shows geometry: the sky-view table's
 GPU_CONST uint kSkyTileAerial = 2u;  // every pixel shows geometry inside the air: the aerial volume's
-GPU_CONST uint kSkyTileClasses = 3u;
+// Aerial tiles from below the cloud layer whose pixels, and the cloud samples they read, all end
+// their rays before the layer: no cloud in front of them, only its shadow on them (sorted by
+// sky_cloud_classify.comp).
+GPU_CONST uint kSkyTileAerialClear = 3u;
+GPU_CONST uint kSkyTileClasses = 4u;
 // The cloud pass's tiles (8 × 8 samples): those whose rays may meet the layer, and those whose
 // every ray ends before it can (from below the layer's base, at geometry nearer than where the
 // ray leaves the ball under the base), which take no march.
-GPU_CONST uint kSkyCloudTileMarch = 3u;
-GPU_CONST uint kSkyCloudTileClear = 4u;
-GPU_CONST uint kSkyTileLists = 5u;
+GPU_CONST uint kSkyCloudTileMarch = 4u;
+GPU_CONST uint kSkyCloudTileClear = 5u;
+GPU_CONST uint kSkyTileLists = 6u;
 
 // The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
 // aerial_perspective.comp before the compose pass, from the same SkyUniforms.
