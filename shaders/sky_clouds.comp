@@ -38,10 +38,13 @@ void main() {
   // (from orbit neighbouring pixels' distances differ by far more than the layer is thick: the
   // nearest one would end the centre's ray in front of the layer). Across a silhouette, or where
   // a pixel shows no surface (depth 0), the nearest surface (the largest depth).
-  ivec2 last = ivec2(sky.extent.xy) - 1;
+  // The block's pixels in one read (at full resolution the one pixel, four times), added in the
+  // order (+0, +0), (+1, +0), (+0, +1), (+1, +1).
+  vec4 texels = depthTexels(scale * cell);
+  vec4 block = scale == 1 ? texels.wwww : texels.wzxy;
   float nearest = 0.0f, farthest = 1e30f, sum = 0.0f;
   for (int k = 0; k < 4; ++k) {
-    float d = texelFetch(depthBuffer, min(scale * cell + (scale - 1) * ivec2(k & 1, k >> 1), last), 0).r;
+    float d = block[k];
     nearest = max(nearest, d);
     farthest = min(farthest, d);
     sum += d;

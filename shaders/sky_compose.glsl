@@ -220,6 +220,10 @@ void aerialPerspective(vec2 uv, float t, vec2 columnStretch, out vec3 light, out
   transmittance = textureLod(aerialTransmittance, uvw, 0.0f).rgb;
 }
 
+// The depths of the 2×2 pixels from `pixel` (one gather, in its component order: x (+0, +1),
+// y (+1, +1), z (+1, +0), w (+0, +0)); the depth sampler clamps to the image's edge.
+vec4 depthTexels(ivec2 pixel) { return textureGather(depthBuffer, vec2(pixel + 1) / sky.extent.xy); }
+
 // A view ray through a point of the screen (in pixels) and where it ends: at the drawn surface
 // (depth, reversed Z), else at the ground sphere, else nowhere (kInfinity).
 struct ViewRay {
