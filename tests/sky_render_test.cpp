@@ -459,9 +459,10 @@ TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
 // The tables' compose runs the tiles whose pixels all show the sky, or all show the ground, by
 // pipelines without the other side's code (SkySettings::tileClasses, sky_classify.comp), and the
 // cloud pass its tiles whose rays all end before the cloud layer by one without the march
-// (sky_cloud_classify.comp): the pictures are those of the pipelines with everything, bit for
+// (sky_cloud_classify.comp), which also gives the ground's compose tiles clear of the layer one
+// that reads only its shadow: the pictures are those of the pipelines with everything, bit for
 // bit; from a plane most compose tiles are of one kind, and below the layer most of the ground's
-// cloud tiles take no march. From 50 m and 1.5 km (below Earth's clouds at 2 km), from 10 km
+// cloud and compose tiles are clear of it. From 50 m and 1.5 km (below Earth's clouds at 2 km), from 10 km
 // looking down, Earth's limb from 6,300 km, and the airless Moon looking at the sun (its compose
 // runs only around the disc).
 TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {

@@ -381,7 +381,9 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const bool above = view.altitudeM >= top;
   const double toHorizon = std::sqrt((altitude - groundSphere) * (2.0 * radius + altitude + groundSphere));
   const double horizonToTop = std::sqrt(std::max(top - groundSphere, 0.0) * (2.0 * radius + top + groundSphere));
-  cameraInAir_ = !above;
+  // The ground's compose tiles clear of the clouds: sorted with the cloud tiles, which start at
+  // the same corner; their pipeline reads the aerial volume as from inside the air.
+  clearGroundTiles_ = clearCloudTiles_ && ownSurfacesOnly_ && !above;
   u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), 0.0f, 0.0f);
   // The sky-view table: built again only when its inputs moved beyond the tolerances.
   const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
@@ -456,10 +458,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     uint32_t classes = 0;
     if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (ownSurfacesOnly_ ? 1u << gpu::kSkyTileAerial : 0u);
     if (clearCloudTiles_) classes |= 1u << gpu::kSkyCloudTileClear;
-    // The ground's tiles clear of the clouds: sorted with the cloud tiles, which start at the
-    // same corner; their pipeline reads the aerial volume as from inside the air.
-    if (clearCloudTiles_ && ownSurfacesOnly_ && (classes & (1u << gpu::kSkyTileAerial)) != 0 && cameraInAir_)
-      classes |= 1u << gpu::kSkyTileAerialClear;
+    if (clearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialClear;
     const uint32_t cloudGroupsX = (cloudRegion_.width() + group - 1) / group,
                    cloudGroupsY = (cloudRegion_.height() + group - 1) / group;
     const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes};

@@ -258,7 +258,9 @@ class SkyPass {
   // Of the last prepare(): the cloud pass may leave out the march in tiles whose rays all end
   // before the layer (the camera is below it, and both regions start at the image's corner).
   bool clearCloudTiles_ = false;
-  bool cameraInAir_ = false;  // of the last prepare(): below the top of the atmosphere
+  // Of the last prepare(): the compose may read only the clouds' shadow in the ground's tiles
+  // whose rays all end before the layer (as above, with the ground's class and inside the air).
+  bool clearGroundTiles_ = false;
 };
 
 }  // namespace planet
