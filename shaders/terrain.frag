@@ -24,6 +24,7 @@ layout(constant_id = 4) const bool kSpecGroundDetail = true;
 // The ring shadow: true only for a body with rings.
 layout(constant_id = 5) const bool kSpecRingShadow = true;
 
+#include "terrain_colors.glsl"
 #include "terrain_material.glsl"
 
 #include "common/color_schemes.glsl"
@@ -86,9 +87,9 @@ vec3 bandColor(float altitude, float sinLatitude) {
   float s = 17.0f * latitude + 0.3f * warp;
   float zones = smoothstep(-0.35f, 0.35f, sin(s));
   float fine = 0.5f + 0.5f * sin(3.7f * s + 0.4f * warp);
-  vec3 c = mix(frame.colorLowland.rgb, frame.colorHighland.rgb, zones);
-  c = mix(c, frame.colorBeach.rgb, 0.35f * fine * (1.0f - zones));
-  return mix(c, frame.colorCliff.rgb, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));
+  vec3 c = mix(kColorLowland, kColorHighland, zones);
+  c = mix(c, kColorBeach, 0.35f * fine * (1.0f - zones));
+  return mix(c, kColorCliff, smoothstep(1.0f, 1.45f, abs(latitude) + 0.05f * warp));
 }
 
 // The material at a ground pixel with its detail: albedo, and the normal tilted by the detail's
@@ -115,7 +116,7 @@ vec3 groundAlbedo(float altitude, float slope, float sinLatitude, float jitter, 
   // bright sand), a warm-cool tint along the second field, and stones of the rock's colours.
   float contrast = frame.slopes.w * m.contrast;
   vec3 albedo = m.albedo * exp(contrast * (vec3(d.albedo) + d.hue * vec3(0.5f, 0.2f, -0.5f)));
-  vec3 stone = mix(frame.colorScree.rgb, frame.colorCliff.rgb, 0.5f + 0.5f * d.hue) * (1.0f + 0.6f * d.albedo);
+  vec3 stone = mix(kColorScree, kColorCliff, 0.5f + 0.5f * d.hue) * (1.0f + 0.6f * d.albedo);
   return mix(albedo, stone, min(frame.slopes.w, 1.0f) * m.stony * d.stones);
 }
 
@@ -175,9 +176,9 @@ void main() {
     float depth = seaLevel - height;
     // A sand shelf narrower than the pixel shows only its share of it.
     float sand = (1.0f - smoothstep(0.0f, 60.0f, depth)) * clamp(60.0f / max(pixelM, 1e-3f), 0.0f, 1.0f);
-    albedo = mix(0.4f * frame.colorLowland.rgb + 0.3f * frame.colorBeach.rgb, frame.colorBeach.rgb, sand);
+    albedo = mix(0.4f * kColorLowland + 0.3f * kColorBeach, kColorBeach, sand);
     if (frame.water.z < 0.5f) {  // no water pass (debug): show the sea as its colour
-      albedo = mix(frame.colorShallowWater.rgb, frame.colorDeepWater.rgb, smoothstep(0.0f, 200.0f, depth));
+      albedo = mix(kColorShallowWater, kColorDeepWater, smoothstep(0.0f, 200.0f, depth));
       normal = up;
     }
   } else {
@@ -199,7 +200,7 @@ void main() {
       albedo = schemeColor(frame.scheme, height - seaLevel, dot(normal, up), inAttributes.w, colorNoise, max(pixelM, 1.0f));
     else
       albedo = groundAlbedo(height - seaLevel, slope, inAttributes.w, jitter, pixelM, offsetPlanet, footprintM, normal);
-    if (caps) albedo = mix(albedo, frame.colorSnow.rgb, schemePolarCap(frame.scheme, inAttributes.w, colorNoise, latitudeEdge));
+    if (caps) albedo = mix(albedo, kColorSnow, schemePolarCap(frame.scheme, inAttributes.w, colorNoise, latitudeEdge));
     if (kSpecLights != 0u) {
       vec3 direction = normalize(mat3(frame.localToPlanet)[2] + offsetPlanet / frame.camera.y);
       // The pixel's area as a square (its sides' geometric mean): toward the limb the long side

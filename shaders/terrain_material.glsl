@@ -21,6 +21,7 @@
 #ifndef PLANET_TERRAIN_MATERIAL_GLSL
 #define PLANET_TERRAIN_MATERIAL_GLSL
 
+#include "terrain_colors.glsl"
 #include "terrain_detail.glsl"
 
 // What the ground is at a pixel: its albedo and how its detail looks.
@@ -68,16 +69,16 @@ GroundMaterial earthMaterial(float altitudeM, float slope, float s, float noise,
   // do not run together.
   float t = meanTemperatureC(s, altitudeM) + 4.0f * noise;
   float wet = moistureAt(latitudeDeg, noise, altitudeM);
-  GroundMaterial conifer = material(frame.colorConifer.rgb, 1.0f, 0.6f, 0.0f);
-  GroundMaterial forest = material(frame.colorForest.rgb, 1.0f, 0.6f, 0.0f);
-  GroundMaterial grass = material(frame.colorGrass.rgb, 1.0f, 0.6f, 0.05f);
-  GroundMaterial dryGrass = material(frame.colorDryGrass.rgb, 0.9f, 0.5f, 0.25f);
-  GroundMaterial desert = material(frame.colorDesert.rgb, 0.5f, 0.25f, 0.4f);
-  GroundMaterial tundra = material(frame.colorTundra.rgb, 0.8f, 0.45f, 0.3f);
-  GroundMaterial rock = material(frame.colorCliff.rgb, 1.0f, 0.25f, 0.6f);
-  GroundMaterial scree = material(frame.colorScree.rgb, 0.9f, 0.3f, 1.0f);
-  GroundMaterial sand = material(frame.colorBeach.rgb, 0.25f, 0.1f, 0.1f);
-  GroundMaterial snow = material(frame.colorSnow.rgb, 0.3f, 0.04f, 0.0f);
+  GroundMaterial conifer = material(kColorConifer, 1.0f, 0.6f, 0.0f);
+  GroundMaterial forest = material(kColorForest, 1.0f, 0.6f, 0.0f);
+  GroundMaterial grass = material(kColorGrass, 1.0f, 0.6f, 0.05f);
+  GroundMaterial dryGrass = material(kColorDryGrass, 0.9f, 0.5f, 0.25f);
+  GroundMaterial desert = material(kColorDesert, 0.5f, 0.25f, 0.4f);
+  GroundMaterial tundra = material(kColorTundra, 0.8f, 0.45f, 0.3f);
+  GroundMaterial rock = material(kColorCliff, 1.0f, 0.25f, 0.6f);
+  GroundMaterial scree = material(kColorScree, 0.9f, 0.3f, 1.0f);
+  GroundMaterial sand = material(kColorBeach, 0.25f, 0.1f, 0.1f);
+  GroundMaterial snow = material(kColorSnow, 0.3f, 0.04f, 0.0f);
   // Whittaker: trees where it is wet enough (the warmer, the more water they need), grass
   // where less, desert where dry; conifers where cool, broadleaf (and rainforest) where warm.
   GroundMaterial trees = blend(conifer, forest, over(t, 8.0f, 3.0f));
@@ -108,11 +109,11 @@ GroundMaterial earthMaterial(float altitudeM, float slope, float s, float noise,
 // The mars scheme: bright dust on the plains and high ground, dark basalt sand in the lows, rock
 // on slopes, scree below it, and frost where the temperature is below the frost point.
 GroundMaterial marsMaterial(float altitudeM, float slope, float s, float noise) {
-  GroundMaterial basalt = material(frame.colorLowland.rgb, 0.4f, 0.2f, 0.3f);
-  GroundMaterial dust = material(frame.colorHighland.rgb, 0.35f, 0.15f, 0.4f);
-  GroundMaterial rock = material(frame.colorCliff.rgb, 1.0f, 0.25f, 0.6f);
-  GroundMaterial scree = material(frame.colorScree.rgb, 0.9f, 0.3f, 1.0f);
-  GroundMaterial ice = material(frame.colorSnow.rgb, 0.3f, 0.05f, 0.0f);
+  GroundMaterial basalt = material(kColorLowland, 0.4f, 0.2f, 0.3f);
+  GroundMaterial dust = material(kColorHighland, 0.35f, 0.15f, 0.4f);
+  GroundMaterial rock = material(kColorCliff, 1.0f, 0.25f, 0.6f);
+  GroundMaterial scree = material(kColorScree, 0.9f, 0.3f, 1.0f);
+  GroundMaterial ice = material(kColorSnow, 0.3f, 0.05f, 0.0f);
   GroundMaterial g = blend(basalt, dust, over(altitudeM + 2500.0f * noise, -1500.0f, 1200.0f));
   float rockSlope = frame.slopes.x + 0.12f * noise;
   g = blend(g, scree, over(slope, rockSlope - 0.12f, 0.04f));
@@ -125,10 +126,10 @@ GroundMaterial marsMaterial(float altitudeM, float slope, float s, float noise) 
 // The moon scheme: maria low and dark, highlands bright (frayed by the noise at every scale), fresh
 // rock on steep slopes with scree below it.
 GroundMaterial moonMaterial(float altitudeM, float slope, float noise) {
-  GroundMaterial mare = material(frame.colorLowland.rgb, 0.5f, 0.15f, 0.3f);
-  GroundMaterial highland = material(frame.colorHighland.rgb, 0.5f, 0.15f, 0.3f);
-  GroundMaterial rock = material(frame.colorCliff.rgb, 1.0f, 0.25f, 0.6f);
-  GroundMaterial scree = material(frame.colorScree.rgb, 0.9f, 0.3f, 1.0f);
+  GroundMaterial mare = material(kColorLowland, 0.5f, 0.15f, 0.3f);
+  GroundMaterial highland = material(kColorHighland, 0.5f, 0.15f, 0.3f);
+  GroundMaterial rock = material(kColorCliff, 1.0f, 0.25f, 0.6f);
+  GroundMaterial scree = material(kColorScree, 0.9f, 0.3f, 1.0f);
   GroundMaterial g = blend(mare, highland, smoothstep(-1500.0f, 1500.0f, altitudeM + 1500.0f * noise));
   float rockSlope = frame.slopes.x + 0.12f * noise;
   g = blend(g, scree, over(slope, rockSlope - 0.12f, 0.04f));

@@ -1,9 +1,11 @@
 #include "render/terrain_pass.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -102,6 +104,16 @@ constexpr VkDeviceSize kTableRows = VkDeviceSize(gpu::kTerrainMaxLayers) * gpu::
 constexpr uint32_t kVertexStrides[] = {sizeof(glm::vec4), sizeof(ClipmapVertex), sizeof(glm::vec4), sizeof(glm::vec4)};
 
 glm::vec4 toVec4(const glm::vec3& v, float w = 0.0f) { return glm::vec4(v, w); }
+
+// terrain.frag's colour constants (shaders/terrain_colors.glsl, in its order), appended to its
+// specialization as the bits of their floats.
+void appendColorSpecialization(std::vector<uint32_t>& values, const PlanetColors& c, const MaterialDescription& m) {
+  const glm::vec3 colors[] = {c.deepWater, c.shallowWater, c.beach, c.lowland,  c.highland, c.cliff,  c.snow,
+                              m.conifer,   m.forest,       m.grass, m.dryGrass, m.desert,   m.tundra, m.scree};
+  static_assert(std::size(colors) == gpu::kTerrainFragColorCount);
+  for (const glm::vec3& color : colors)
+    for (int i = 0; i < 3; ++i) values.push_back(std::bit_cast<uint32_t>(color[i]));
+}
 
 // The ground materials' uniforms (shaders/terrain_material.glsl) and the per-pixel ground noise's
 // octaves rebased at `anchorM` (the mesh's anchor, planet frame; shaders/terrain_detail.glsl):
@@ -398,14 +410,17 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
       planet_.hasOcean && !earlyDepth ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
   // The colour scheme, the polar caps, the eclipses and the frame's shading (TerrainShading) as
   // specialization constants (terrain.frag): lavapipe runs every side of a branch, and the seed
-  // schemes' per-pixel noise (or the lights') would cost every planet.
-  const uint32_t specialization[] = {uint32_t(planet_.colors.scheme),
-                                     planet_.colors.polarCaps ? 1u : 0u,
-                                     !wireframe && shading.lights ? 1u : 0u,
-                                     settings_.eclipses ? 1u : 0u,
-                                     !wireframe && shading.groundDetail ? 1u : 0u,
-                                     !wireframe && shading.ringShadow ? 1u : 0u,
-                                     !wireframe && shading.relief ? 1u : 0u};
+  // schemes' per-pixel noise (or the lights') would cost every planet. Then the planet's colours.
+  const uint32_t parts[] = {uint32_t(planet_.colors.scheme),
+                            planet_.colors.polarCaps ? 1u : 0u,
+                            !wireframe && shading.lights ? 1u : 0u,
+                            settings_.eclipses ? 1u : 0u,
+                            !wireframe && shading.groundDetail ? 1u : 0u,
+                            !wireframe && shading.ringShadow ? 1u : 0u,
+                            !wireframe && shading.relief ? 1u : 0u};
+  static_assert(std::size(parts) == gpu::kTerrainFragSpecColors);
+  std::vector<uint32_t> specialization(std::begin(parts), std::end(parts));
+  appendColorSpecialization(specialization, planet_.colors, planet_.materials);
   desc.fragmentSpecialization = specialization;
   desc.layout = layout_.get();
   std::vector<uint32_t> vertexSpecialization;

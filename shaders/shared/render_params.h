@@ -39,6 +39,11 @@ GPU_CONST uint kRenderBindingChunks = 13u;         // uvec2[]: the height pass's
 GPU_CONST uint kRenderBindingFrameTexels = 14u;    // samplerBuffer: binding 0's FrameUniforms as RGBA32F texels
 GPU_CONST uint kRenderBindingCount = 15u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
+// terrain.frag's specialization constants (TerrainPass::createDrawPipeline): ids 0 .. 6 its parts
+// (scheme, caps, lights, eclipses, detail, ring shadow, relief), then from kTerrainFragSpecColors the
+// planet's kTerrainFragColorCount surface colours, three floats each (terrain_colors.glsl).
+GPU_CONST uint kTerrainFragSpecColors = 7u;
+GPU_CONST uint kTerrainFragColorCount = 14u;
 GPU_CONST uint kWaterWaveCount = 4u;  // = kSkyIrradianceSamples (engine/reference/atmosphere_model.h)
 GPU_CONST uint kTerrainComputeWorkgroupSize = 64u;
 // Per-pixel ground noise (shaders/terrain_detail.glsl): the first kGroundBiomeOctavesGpu octaves
