@@ -1,7 +1,7 @@
 // The planet's surface colours (rgb, linear reflectance) for terrain.frag, as specialization
 // constants from kTerrainFragSpecColors on (TerrainPass::createDrawPipeline, in this order), not
-// read from FrameUniforms, which holds the same values for the other shaders: they are fixed for
-// a planet (an edit in the viewer rebuilds the renderer), and as constants the ground's material
+// read from FrameUniforms, which keeps only the three water.frag reads: they are fixed for a
+// planet (an edit in the viewer rebuilds the renderer), and as constants the ground's material
 // blends cost lavapipe ~1.5-2 ms less a frame at 50 m (docs/benchmarks.md, "The ground's colours
 // as constants").
 #ifndef PLANET_TERRAIN_COLORS_GLSL

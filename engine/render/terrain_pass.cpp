@@ -129,13 +129,6 @@ void writeMaterials(gpu::FrameUniforms& u, const MaterialDescription& m, double 
                         float(m.snowTemperatureC));
   u.moisture = glm::vec4(float(m.moisture), float(m.moistureNoise), float(m.coastalHeightM), float(m.dryBelt));
   u.slopes = glm::vec4(slope(m.rockSlopeDeg), slope(m.snowSlopeDeg), float(m.detailRelief), float(m.detailContrast));
-  u.colorConifer = toVec4(m.conifer);
-  u.colorForest = toVec4(m.forest);
-  u.colorGrass = toVec4(m.grass);
-  u.colorDryGrass = toVec4(m.dryGrass);
-  u.colorDesert = toVec4(m.desert);
-  u.colorTundra = toVec4(m.tundra);
-  u.colorScree = toVec4(m.scree);
   for (uint32_t i = 0; i < gpu::kGroundOctavesGpu; ++i) {
     const double frequency = groundOctaveFrequency(i, bandWavelengthM);
     u.groundOctaves[i].w = float(frequency);
@@ -732,10 +725,6 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   for (int i = 0; i < kSkyIrradianceSamples; ++i) u.skyIrradiance[i] = sky_.skyIrradiance()[size_t(i)] * float(scale);
   u.colorDeepWater = toVec4(c.deepWater);
   u.colorShallowWater = toVec4(c.shallowWater);
-  u.colorBeach = toVec4(c.beach);
-  u.colorLowland = toVec4(c.lowland);
-  u.colorHighland = toVec4(c.highland);
-  u.colorCliff = toVec4(c.cliff);
   u.colorSnow = toVec4(c.snow);
   writeMaterials(u, planet_.materials, settings_.bandWavelengthM, o.nadirDirection() * planet_.radiusM);
   u.scheme = schemeGpuParams(c, planet_.radiusM, planet_.materials.rockSlopeDeg);

@@ -70,12 +70,10 @@ struct FrameUniforms {
   vec4 sunLocal;  // xyz: unit direction toward the sun (local frame), w: sun irradiance
   vec4 water;     // x: clarity depth (m), y: largest wave wavelength (m), z: 1 if the water pass draws, w: Cox–Munk
                   // total mean square wave slope from the preset's wind (coxMunkSlopeVariance, water_pass.h)
-  vec4 colorDeepWater;  // rgb linear; w unused
+  // The colours water.frag reads (rgb linear; w unused). terrain.frag takes all of the planet's
+  // as specialization constants instead (terrain_colors.glsl).
+  vec4 colorDeepWater;
   vec4 colorShallowWater;
-  vec4 colorBeach;
-  vec4 colorLowland;
-  vec4 colorHighland;
-  vec4 colorCliff;
   vec4 colorSnow;
   // Patch textures: the face's axes in the local frame, and the reference point the per-vertex
   // face offsets (attributes.xy) are measured from.
@@ -107,13 +105,6 @@ struct FrameUniforms {
                   // w: dryness of the subtropical belts
   vec4 slopes;    // x: slope (1 − cos) where bare rock begins, y: steepest slope snow holds on,
                   // z: detail relief (slope scale), w: detail albedo contrast
-  vec4 colorConifer;  // rgb linear reflectance; w unused
-  vec4 colorForest;
-  vec4 colorGrass;
-  vec4 colorDryGrass;
-  vec4 colorDesert;
-  vec4 colorTundra;
-  vec4 colorScree;
   // The ground noise's octaves rebased at the anchor (DESIGN.md precision rule; terrain_detail.glsl):
   vec4 groundOctaves[kGroundOctavesGpu];  // xyz: anchor · frequency minus the shift (cells), w: frequency (1/m)
   vec4 groundShifts[kGroundOctavesGpu];   // xyz: the lattice shift modulo 2^22 (exact in float), w unused
@@ -125,18 +116,18 @@ struct FrameUniforms {
   // pipeline's kSpecLights is set.
   LightsParams lights;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2304 + 272 + 48)
+GPU_ASSERT_SIZE(FrameUniforms, 2128 + 272 + 48)
 
 // The texel (vec4) where each array of FrameUniforms that the shaders index with a variable
 // starts, for reading it through kRenderBindingFrameTexels (why: terrain_common.glsl,
 // frameArray); engine/render/terrain_pass.cpp checks them against the struct.
-GPU_CONST uint kFrameTexelPatchLevels = 28u;
-GPU_CONST uint kFrameTexelPatchWrap = 44u;
-GPU_CONST uint kFrameTexelPatchBounds = 52u;
-GPU_CONST uint kFrameTexelSkyIrradiance = 75u;
-GPU_CONST uint kFrameTexelWaves = 91u;
-GPU_CONST uint kFrameTexelGroundOctaves = 114u;
-GPU_CONST uint kFrameTexelGroundShifts = 122u;
+GPU_CONST uint kFrameTexelPatchLevels = 24u;
+GPU_CONST uint kFrameTexelPatchWrap = 40u;
+GPU_CONST uint kFrameTexelPatchBounds = 48u;
+GPU_CONST uint kFrameTexelSkyIrradiance = 71u;
+GPU_CONST uint kFrameTexelWaves = 87u;
+GPU_CONST uint kFrameTexelGroundOctaves = 103u;
+GPU_CONST uint kFrameTexelGroundShifts = 111u;
 
 // Push constants of the compute passes: which vertices to work on this frame.
 struct TerrainComputePush {
