@@ -225,11 +225,17 @@ void main() {
   // is up for them, so the fill sets with the sun and is gone 6° past the terminator: it lit a
   // night side no sunlight reaches (issue 14, point 2).
   float fill = frame.shading.w * frame.sunLocal.w * smoothstep(-0.1f, 0.0f, muS);
-  vec3 skyLight = (skyIrradianceAt(muS) + vec3(fill)) * (0.6f + 0.4f * dot(normal, up));
   // An eclipse dims both as it dims the sun: the air above a shadowed point and the ground
   // around it are in the same shadow (an approximation at its edge, where some comes from outside).
-  skyLight *= eclipse;
-  vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight);
+  vec3 skyIrradiance = skyIrradianceAt(muS) * eclipse;
+  vec3 skyLight = (skyIrradiance + vec3(fill * eclipse)) * (0.6f + 0.4f * dot(normal, up));
+  // Light from the ground around: a slope sees it over (1 − n·up) / 2 of its hemisphere (none on
+  // level ground), lit as level ground by the sun and the sky and of this pixel's albedo. Without
+  // it, slopes turned from the sun had only the sky's blue: desert hills' shadowed sides came out
+  // blue-grey where photographs show them the ground's colour, darker, warmed by the lit sand.
+  vec3 groundAround = albedo * (sunLight * max(muS, 0.0f) + skyIrradiance);
+  vec3 bounce = groundAround * (0.5f - 0.5f * dot(normal, up));
+  vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight + bounce);
   // The lights, switched on through dusk by the sun's elevation here; the sky pass sees them
   // through the air and the clouds as it sees the ground.
   if (kSpecLights != 0u) radiance += emitted * lightsDuskFade(muS);

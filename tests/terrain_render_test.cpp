@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -730,6 +731,35 @@ TEST_F(TerrainRender, TogglesDrawWhatTheSettingsWouldHave) {
   const RenderResult filled = started.render(camera, {});
   EXPECT_EQ(filled.terrain.patchLevelsRebuilt, 4u);
   EXPECT_EQ(filled.image.pixels, first.image.pixels);
+}
+
+// Light from the ground around (terrain.frag): a slope turned from the sun sees the sunlit ground
+// below its horizon. On Mars without its air and with no fill light there is no other light in
+// the shade, so before, such slopes were black; lit by ground of the same colour, their light is
+// the albedo's colour twice over (albedo²), redder than the sunlit ground's (albedo alone).
+TEST_F(TerrainRender, SlopesTurnedFromTheSunAreLitByTheGroundAround) {
+  PlanetDescription planet = resolvePreset("mars");
+  planet.atmosphere.enabled = false;
+  RenderSettings settings = smallSettings(true);
+  settings.terrain.ambient = 0.0;
+  Renderer renderer(context(), planet, settings);
+  // Looking down at rough ground with the sun 4 degrees up: many slopes face away from it.
+  const RenderResult result = renderer.render({-14.0, -70.0, 15000.0, 0.0, -40.0}, {90.0, 4.0}, 0.0, true);
+  std::vector<std::pair<double, double>> byLight;  // (r + g + b, r / b) per pixel
+  for (const glm::vec4& p : result.hdr) {
+    ASSERT_GT(p.r + p.g + p.b, 0.0f) << "a pixel in the shade is black: no light from the ground around";
+    byLight.emplace_back(p.r + p.g + p.b, p.r / p.b);
+  }
+  std::sort(byLight.begin(), byLight.end());
+  auto meanRedOverBlue = [&](size_t from, size_t to) {
+    double sum = 0.0;
+    for (size_t i = from; i < to; ++i) sum += byLight[i].second;
+    return sum / double(to - from);
+  };
+  const size_t n = byLight.size();
+  const double shade = meanRedOverBlue(0, n / 20), sunlit = meanRedOverBlue(n / 2, n);
+  ASSERT_GT(byLight[n / 2].first, 20.0 * byLight[n / 20].first) << "the view should show shaded slopes";
+  EXPECT_GT(shade, 1.5 * sunlit) << "the shade's light should be the ground's colour twice over";
 }
 
 // Golden images: lavapipe on Debian 12 renders these bit for bit today; the PSNR threshold
