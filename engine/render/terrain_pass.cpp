@@ -363,18 +363,29 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
   }
   // The fill pipelines are built on first use, per shading (prepare()).
   if (settings.wireframe) wireframePipeline_ = {context, createDrawPipeline(true)};
+  if (planet.hasOcean) createWater();
+}
+
+void TerrainPass::createWater() {
   // The sea reads the vertex buffers the compute (or CPU) heights fill; in seed 002's design
   // (heights in the vertex shader) its vertices evaluate the noise again.
-  if (planet.hasOcean) {
-    if (noiseDrawLayout_.get()) {
-      const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
-      water_ = std::make_unique<WaterPass>(context, noiseDrawLayout_.get(), colorFormat, depthFormat, settings.eclipses,
-                                           std::span<const uint32_t>(), noiseVertexSpirv(), specialization);
-    } else {
-      water_ = std::make_unique<WaterPass>(context, layout_.get(), colorFormat, depthFormat, settings.eclipses,
-                                           kVertexStrides);
-    }
+  const bool ringShadow = ring_.has_value();
+  if (noiseDrawLayout_.get()) {
+    const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
+    water_ =
+        std::make_unique<WaterPass>(context_, noiseDrawLayout_.get(), colorFormat_, depthFormat_, settings_.eclipses,
+                                    ringShadow, std::span<const uint32_t>(), noiseVertexSpirv(), specialization);
+  } else {
+    water_ = std::make_unique<WaterPass>(context_, layout_.get(), colorFormat_, depthFormat_, settings_.eclipses,
+                                         ringShadow, kVertexStrides);
   }
+}
+
+void TerrainPass::setRingShadow(const gpu::RingParams* ring) {
+  const bool had = ring_.has_value();
+  ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt;
+  // The sea's shader has the shadow's code only with rings (a specialization constant).
+  if (water_ && had != ring_.has_value()) createWater();
 }
 
 TerrainPass::~TerrainPass() = default;

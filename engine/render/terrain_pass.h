@@ -260,8 +260,9 @@ class TerrainPass {
   void setPatchTexelsPerFrame(uint64_t texels) { settings_.patchTexelsPerFrame = texels; }
   // Marks every patch level stale: the next frame that samples them builds them whole.
   void invalidatePatches();
-  // The body's rings, whose shadow darkens the ground (null: none).
-  void setRingShadow(const gpu::RingParams* ring) { ring_ = ring ? std::optional<gpu::RingParams>(*ring) : std::nullopt; }
+  // The body's rings, whose shadow darkens the ground and the sea (null: none). Call it before
+  // the first frame: with rings the sea's pipeline is built again.
+  void setRingShadow(const gpu::RingParams* ring);
   // City lights on the night side (planets with [lights]).
   void setLightsEnabled(bool lights) { settings_.lights = lights; }
   // Builds now every fill pipeline a frame may choose (TerrainShading) and the wireframe one,
@@ -316,6 +317,8 @@ class TerrainPass {
   // earlyDepth: the variant that writes no depth and tests it before shading (terrain.frag), which
   // planets without a sea always draw with.
   VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {}, bool earlyDepth = false);
+  // The water pass, for the planet's sea (its shader with the ring shadow when ring_ is set).
+  void createWater();
   // Whether this frame's fill draws are split by terrain_split.comp (TerrainSettings::splitSeaFloor).
   bool splitsSeaFloor() const;
   // The split's dispatch and its barriers (recordCompute).

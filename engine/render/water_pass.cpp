@@ -12,14 +12,15 @@
 namespace planet {
 
 WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
-                     bool eclipses, std::span<const uint32_t> vertexStrides, std::span<const uint32_t> vertexSpirv,
-                     std::span<const uint32_t> vertexSpecialization) {
+                     bool eclipses, bool ringShadow, std::span<const uint32_t> vertexStrides,
+                     std::span<const uint32_t> vertexSpirv, std::span<const uint32_t> vertexSpecialization) {
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;
   desc.vertexStrides = vertexStrides;
   desc.vertexSpirv = vertexSpirv.empty() ? std::span<const uint32_t>(kSpv_water_vert) : vertexSpirv;
   desc.vertexSpecialization = vertexSpecialization;
-  const uint32_t fragmentSpecialization[] = {eclipses ? 1u : 0u};  // water.frag's kSpecEclipses
+  // water.frag's kSpecEclipses, kSpecRingShadow
+  const uint32_t fragmentSpecialization[] = {eclipses ? 1u : 0u, ringShadow ? 1u : 0u};
   desc.fragmentSpecialization = fragmentSpecialization;
   desc.fragmentSpirv = kSpv_water_frag;
   desc.colorFormat = colorFormat;

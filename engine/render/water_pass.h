@@ -34,11 +34,12 @@ class WaterPass {
   // A pipeline over the terrain pass's `layout`, for a dynamic-rendering scope of colorFormat and
   // depthFormat. The vertices come from water.vert, or from `vertexSpirv` with its
   // specialization constants (the vertex-shader height source: terrain_noise.vert).
-  // `eclipses` false leaves the eclipse code out of the fragment shader (no other body).
+  // `eclipses` false leaves the eclipse code out of the fragment shader (no other body);
+  // `ringShadow` true puts the rings' shadow in (a body with rings).
   // `vertexStrides`: the terrain's vertex buffers (GraphicsPipelineDesc), for water.vert; with
   // `vertexSpirv` (seed 002's design) none.
   WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat, bool eclipses,
-            std::span<const uint32_t> vertexStrides, std::span<const uint32_t> vertexSpirv = {},
+            bool ringShadow, std::span<const uint32_t> vertexStrides, std::span<const uint32_t> vertexSpirv = {},
             std::span<const uint32_t> vertexSpecialization = {});
 
   // Records the draw of the ground's triangles (the first `indexCount` indices of the bound index
