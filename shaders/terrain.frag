@@ -29,8 +29,6 @@ layout(constant_id = 5) const bool kSpecRingShadow = true;
 
 #include "common/color_schemes.glsl"
 
-#include "common/rings.glsl"
-
 // Whether another body can hide the sun (a scene), as a specialization constant: the eclipse
 // loop's body costs every pixel on lavapipe even with no occluder.
 layout(constant_id = 3) const bool kSpecEclipses = true;  // false: no other body can hide the sun
@@ -209,11 +207,7 @@ void main() {
     }
   }
   vec3 sunLight = sunIrradianceAt(height, up);
-  if (kSpecRingShadow && frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow it
-    mat3 localToPlanet = mat3(frame.localToPlanet);
-    vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
-    sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);
-  }
+  if (kSpecRingShadow) sunLight *= surfaceRingShadow(inToCamera);  // the body's rings shadow it
   // Other bodies of a scene hide the sun (common/eclipse.glsl); an occluder's air bends a little
   // red light into its shadow, taken as coming from the sun.
   vec3 refracted;

@@ -9,6 +9,7 @@ layout(set = 0, binding = kRenderBindingTransmittance) uniform sampler2D transmi
 layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 
 #include "atmosphere_lookup.glsl"
+#include "common/rings.glsl"
 #include "shared/relief_params.h"
 
 // Whether some pixel can take the relief cube (TerrainPass::shadingFor): a specialization
@@ -132,6 +133,15 @@ vec3 skyIrradianceAt(float muS) {
 // night side, reddened near the terminator).
 vec3 sunIrradianceAt(float h, vec3 up) {
   return sunTransmittanceTable(frame.atmosphere, max(h, 0.0f), dot(up, frame.sunLocal.xyz)) * frame.sunLocal.w;
+}
+
+// The share of the sun's light that the body's rings let through to the surface point
+// `toCamera` from the camera (local frame, as the vertex shaders' outToCamera); 1 without rings.
+float surfaceRingShadow(vec3 toCamera) {
+  if (!(frame.cameraPlanet.w > 0.5f)) return 1.0f;
+  mat3 localToPlanet = mat3(frame.localToPlanet);
+  vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * toCamera;
+  return ringShadow(pointPlanet, localToPlanet * frame.sunLocal.xyz, frame.ring);
 }
 
 #endif

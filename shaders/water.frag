@@ -24,9 +24,8 @@ layout(constant_id = 0) const bool kSpecEclipses = true;
 #define ECLIPSE_POSSIBLE kSpecEclipses
 #include "common/eclipse.glsl"
 
-// The ring shadow: true only for a body with rings (as terrain.frag's).
+// The ring shadow (terrain_surface.glsl): true only for a body with rings (as terrain.frag's).
 layout(constant_id = 1) const bool kSpecRingShadow = false;
-#include "common/rings.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
@@ -134,11 +133,7 @@ void main() {
   vec3 refracted;
   float eclipse = eclipseSunVisibleRefracted(-inToCamera, sun, frame.eclipse, refracted);
   vec3 sunLight = (vec3(eclipse) + refracted) * sunIrradianceAt(frame.planet.x, up);
-  if (kSpecRingShadow && frame.cameraPlanet.w > 0.5f) {  // the body's rings shadow the sea as the ground
-    mat3 localToPlanet = mat3(frame.localToPlanet);
-    vec3 pointPlanet = frame.cameraPlanet.xyz - localToPlanet * inToCamera;
-    sunLight *= ringShadow(pointPlanet, localToPlanet * sun, frame.ring);
-  }
+  if (kSpecRingShadow) sunLight *= surfaceRingShadow(inToCamera);  // the rings shadow the sea as the ground
   vec3 skyLight = eclipse * skyIrradianceAt(muS);
   // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);

@@ -241,16 +241,18 @@ mean_anomaly_deg = 180
   EXPECT_NEAR(sunPeak[0] / sunPeak[1], 1.0, 0.02) << "a second compose pass drew the sun again";
 }
 
-// How much a body's rings darken its sunlit face: the body alone (`body`, a scene of one body
-// with no rings) and with `rings` ([body.rings]), seen from the sun's side 21 degrees south of the
+// How much a body's rings darken its sunlit face: the body alone (`body`, a scene of one body with
+// no rings) and with `rings` ([body.rings]), seen from the sun's side 21 degrees south of the
 // rings, `eyeRadii` radii from the centre, both without air (the light the air scatters is not
-// shadowed by the rings: the sky pass does not know them). `prepare` changes the bodies before
-// they are drawn; the shadow falls on the sphere `surfaceM` above the radius. Pixels whose sunward ray crosses a dense
-// part of the rings (the CPU reference of terrain.frag's ringShadow says so) give `shadowed`, the reference's
-// transmittance there `expected`, pixels in full sun `lit`: each the median of the per-pixel ratio with / without. Over
-// all pixels whose sunward ray crosses the rings (`crossing`) the mean ratio, and the reference's mean transmittance
-// (`crossingExpected`): a mean does not pick the reference's darkest pixels, so it holds where the drawn shadow's fine
-// structure lies a pixel off the reference's. Pixels with the rings in front of them are left out, and the limb.
+// shadowed by the rings: the sky pass does not know them). `prepare` changes the bodies before they
+// are drawn; the shadow falls on the sphere `surfaceM` above the radius. Pixels whose sunward ray
+// crosses a dense part of the rings (the CPU reference of terrain.frag's ringShadow says so) give
+// `shadowed`, the reference's transmittance there `expected`, pixels in full sun `lit`: each the
+// median of the per-pixel ratio with / without. Over all pixels whose sunward ray crosses the rings
+// (`crossing`) the mean ratio, and the reference's mean transmittance (`crossingExpected`): a mean
+// does not pick the reference's darkest pixels, so it holds where the drawn shadow's fine structure
+// lies a pixel off the reference's. Pixels with the rings in front of them are left out, and the
+// limb.
 struct RingShadowRatios {
   double shadowed = 0.0, expected = 0.0, lit = 0.0, crossing = 0.0, crossingExpected = 0.0;
 };
