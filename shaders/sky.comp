@@ -131,6 +131,11 @@ float skyEclipse(vec3 dir, vec2 stretch, bool fromInside) {
   return 0.25f * sum;
 }
 
+// The clouds' shadow on what was drawn at a pixel, as a factor of its light: on the share of it
+// that the target's alpha says still shows the ground (1 on the ground; the sea leaves only the
+// floor it shows through, WaterPass), since the sea shades its own light under the clouds.
+float cloudShadowOnDrawn(float shadow, float shadowedShare) { return mix(1.0f, shadow, clamp(shadowedShare, 0.0f, 1.0f)); }
+
 void main() {
   // The dispatch covers the pixels where the air or the sun can show (sky.region); elsewhere a ray
   // meets no air, and the pixel keeps what was drawn. The tables' compose runs this class's
@@ -168,9 +173,9 @@ void main() {
   vec3 inscatter = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
 #ifdef SKY_REFERENCE
-  // The clouds and their shadow at this pixel; the layer composed into the march below at the
-  // distance its opacity is centred on.
-  surface *= cloudShadow(ray);
+  // The clouds and their shadow at this pixel (cloudShadowOnDrawn); the layer composed into the
+  // march below at the distance its opacity is centred on.
+  surface *= cloudShadowOnDrawn(cloudShadow(ray), stored.a);
   vec3 cloudLightSum;
   float cloudTransmittance, tCloud;
   cloudsAlong(ray, cloudLightSum, cloudTransmittance, tCloud);
@@ -218,7 +223,7 @@ void main() {
   if (kSpecClouds)
     upsampledClouds(pixel, ray, kSpecTileClass == kSkyTileAerialClear, cloudComposite, cloudTransmittance,
                     cloudShadowFactor);
-  if (geometry) surface *= cloudShadowFactor;
+  if (geometry) surface *= cloudShadowOnDrawn(cloudShadowFactor, stored.a);
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
     // (A tile clear of the clouds is seen from below them, so from inside the air: its columns

@@ -1,7 +1,7 @@
 // What the sky compose pass (sky.comp) and its cloud pass (sky_clouds.comp) share: one
 // descriptor set layout, the view ray through a point of the screen and where it ends, the read
-// of the aerial-perspective volume, and the cloud layer (seed 001 §4.4: three cover images
-// cross-faded, Elias's cover function) with its light along a ray and its shadow on the ground.
+// of the aerial-perspective volume, and the cloud layer (cloud_layer.glsl, which the sea's shader
+// shares) with its light along a ray and its shadow on the ground.
 // The cloud pass's images (kSkyBindingCloudLight, kSkyBindingCloudEnd) are declared by each
 // includer, with the access it needs.
 #ifndef PLANET_SKY_COMPOSE_GLSL
@@ -36,62 +36,16 @@ vec3 marchDirection;
 #define SUN_VISIBLE_ALONG(t) eclipseSunVisible(marchStart + marchDirection * (t), sky.sunLocal.xyz, sky.eclipse)
 #include "atmosphere_lookup.glsl"
 #include "sky_aerial.glsl"
+#define CLOUD_COVER cloudCover
+#define CLOUD_LAYER sky.clouds
+#define CLOUD_SHAPE sky.cloudShape
+#define CLOUD_MOTION sky.cloudMotion
+#define CLOUD_LOCAL_TO_PLANET sky.localToPlanet
+#include "cloud_layer.glsl"
 
 const float kInfinity = 3.0e38f;
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
-
-// The cloud layer (issue 20 point 4) is a height field: the column over each point of the
-// cover holds cloud from the layer's bottom up to bottom + density · thickness, with extinction
-// ∝ density, so a dense column is a tall, optically thick cloud and a thin one a low wisp. A far
-// sample reads the density averaged over its footprint (the cover's mip levels): a sparse field
-// of small clouds becomes a low, thin haze there, not an opaque deck (gaps stay open).
-
-// Cover density (0..1) at a point `fromCentre` (local frame, relative to the planet's centre),
-// cross-faded between the three images (seed 001 eq. 4.2) from mip level `lod`.
-float coverDensity(vec3 fromCentre, float lod) {
-  vec3 planetDir = normalize(mat3(sky.localToPlanet) * fromCentre);
-  float angle = sky.cloudMotion.w;  // the layer drifts eastward: look up where it came from
-  float ca = cos(angle), sa = sin(angle);
-  vec3 drifted = vec3(ca * planetDir.x + sa * planetDir.y, -sa * planetDir.x + ca * planetDir.y, planetDir.z);
-  return dot(textureLod(cloudCover, drifted, lod).rgb, sky.cloudMotion.xyz);
-}
-
-// The mip level whose texels span `footprintM` on the layer (radius rLayer).
-float coverLod(float footprintM, float rLayer) {
-  return clamp(log2(max(footprintM / (sky.cloudShape.x * rLayer), 1.0f)), 0.0f, sky.cloudShape.y);
-}
-
-// Henyey–Greenstein phase function (per steradian) for the cosine nu between light and view.
-float henyeyGreenstein(float g, float nu) {
-  float k = 1.0f + g * g - 2.0f * g * nu;
-  return (1.0f - g * g) / (4.0f * kAtmospherePi * k * sqrt(k));
-}
-
-// Light scattered toward the eye by a cloud at altitude h in a column of density d, per unit of
-// its opacity. Sunlight reaches the point through the column above it: directly, attenuated by
-// Beer–Lambert along the slant path (the cloud's width caps it when the sun is low) and forward
-// peaked (the silver lining toward the sun); and diffusely, by the two-stream transmission of a
-// conservatively scattering slab, T = 1 / (1 + 3/4 (1 − g) τ) (Bohren 1987), which leaves a thick
-// cloud's base grey and its top bright. Sky light comes in the same way from above; a tenth of
-// it, the light from the ground and the sky's sides, reaches every part.
-vec3 cloudLight(float h, float d, float muS, float phase, vec3 sunLight, vec3 skyLight) {
-  float thickness = sky.clouds.y - sky.clouds.x;
-  float top = sky.clouds.x + d * thickness;
-  float depth = max(top - h, 0.0f);
-  float extinction = sky.clouds.z * d;
-  float slant = min(depth / max(muS, 0.05f), sky.clouds.w * thickness);
-  float direct = exp(-extinction * slant);
-  // Powder (Schneider & Vos 2015): just inside a cloud the light has not yet been scattered
-  // toward the eye, which darkens the rims facing the viewer away from the sun a little.
-  float powder = 1.0f - 0.5f * exp(-2.0f * extinction * depth);
-  float tauDown = extinction * depth;
-  float diffuse = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown / max(muS, 0.2f));
-  float diffuseSky = 1.0f / (1.0f + 0.75f * (1.0f - 0.85f) * tauDown);
-  const float kAlbedo = 0.95f;
-  return kAlbedo * (sunLight * (phase * direct * powder + max(muS, 0.0f) / kAtmospherePi * diffuse) +
-                    skyLight / kAtmospherePi * (0.1f + 0.9f * diffuseSky));
-}
 
 // The sky irradiance table at sun zenith cosine muS, fading to none by the end of astronomical
 // twilight below its first entry (as terrain_surface.glsl's).
@@ -160,7 +114,7 @@ void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, u
                 inout float weightedT, inout float weight) {
   float bottom = sky.clouds.x, top = sky.clouds.y;
   float thickness = top - bottom;
-  float phase = 0.8f * henyeyGreenstein(0.75f, nu) + 0.2f * henyeyGreenstein(-0.2f, nu);
+  float phase = cloudPhase(nu);
   float across = sqrt(max(1.0f - mu * mu, 0.0f));
   uint firstSegments = layerSegments(first, across);
   uint segments = firstSegments + (count > 1u ? layerSegments(second, across) : 0u);
@@ -304,29 +258,19 @@ uint farthestDepthSlot(uvec2 tile, uint tilesX) {
 layout(constant_id = 1) const bool kSpecClouds = true;
 bool cloudsDrawn() { return kSpecClouds && sky.cameraPlanet.w > 0.5f && sky.atmosphere.radii.w > 0.5f; }
 
-// Cloud shadow on the drawn surface, as a factor of its light: the column where the ray toward
-// the sun crosses the middle of the layer, crossed at the sun's slant (the cloud's width caps
-// it), blocks the sun's direct light; sky light still comes in.
+// Cloud shadow on the drawn surface, as a factor of its light (cloud_layer.glsl).
 float cloudShadow(ViewRay ray) {
   float shadow = 1.0f;
-  float R = sky.atmosphere.radii.x;
-  float h = sky.camera.x;
-  vec3 sun = sky.sunLocal.xyz;
-  float nu = dot(ray.dir, sun);
-  float cloudH = 0.5f * (sky.clouds.x + sky.clouds.y);
   if (ray.geometry && cloudsDrawn()) {
+    float R = sky.atmosphere.radii.x;
+    float h = sky.camera.x;
+    vec3 sun = sky.sunLocal.xyz;
     float hSurface = altitudeAlong(R, h, ray.dir.z, ray.tGeometry);
-    float muSSurface = ((R + h) * sun.z + ray.tGeometry * nu) / (R + hSurface);
-    if (hSurface < cloudH && muSSurface > 0.0f) {
-      float toLayer = raySphere(R, hSurface, muSSurface, cloudH).x;
-      vec3 layerPoint = ray.dir * ray.tGeometry + sun * toLayer;  // from the camera
-      vec3 fromCentre = vec3(layerPoint.x, layerPoint.y, R + h + layerPoint.z);
-      float footprint = max(ray.tGeometry * sky.extent.z, 1000.0f);
-      float d = coverDensity(fromCentre, coverLod(footprint, R + cloudH));
-      float thickness = sky.clouds.y - sky.clouds.x;
-      float slant = min(d * thickness / muSSurface, sky.clouds.w * thickness);
-      shadow = 1.0f - 0.75f * (1.0f - exp(-sky.clouds.z * d * slant));
-    }
+    float muSSurface = ((R + h) * sun.z + ray.tGeometry * dot(ray.dir, sun)) / (R + hSurface);
+    vec3 surface = ray.dir * ray.tGeometry;  // from the camera
+    vec3 fromCentre = vec3(surface.x, surface.y, R + h + surface.z);
+    float footprint = max(ray.tGeometry * sky.extent.z, 1000.0f);
+    shadow = cloudGroundShadow(cloudSunTransmittance(fromCentre, R, hSurface, sun, muSSurface, footprint));
   }
   return shadow;
 }

@@ -12,7 +12,13 @@
 // height-correlated shadowing-masking (Heitz 2014) with Walter et al.'s (2007) rational Λ for
 // Beckmann. The waves the pixel resolves tilt the normal; the rest of σ² (slopes of waves
 // smaller than the pixel, and the resolved waves faded below the pixel's footprint) widens the
-// distribution, so the total stays Cox–Munk's at every distance and no wave aliases.
+// distribution, so the total stays Cox–Munk's at every distance and no wave aliases. The sky's
+// reflection takes Fresnel averaged over those unresolved facets (roughSeaReflectance).
+//
+// Clouds (a planet with clouds and air): the sea mirrors the layer's base (reflectedSky) and lies
+// in its shadow, which takes the glint with the sun's direct light and the water body's light as
+// the ground's. The target's alpha keeps only the share of the pixel that shows the sea floor
+// (WaterPass), which the sky pass's cloud shadow still darkens.
 #extension GL_GOOGLE_include_directive : require
 
 #include "terrain_common.glsl"
@@ -26,6 +32,16 @@ layout(constant_id = 0) const bool kSpecEclipses = true;
 
 // The ring shadow (terrain_surface.glsl): true only for a body with rings (as terrain.frag's).
 layout(constant_id = 1) const bool kSpecRingShadow = false;
+// The cloud layer (a planet with clouds and air; frames that draw them set frame.cloudShape.z):
+// the sea mirrors it and lies in its shadow, which the sky pass then leaves to it.
+layout(constant_id = 2) const bool kSpecClouds = false;
+layout(set = 0, binding = kRenderBindingClouds) uniform samplerCube cloudCover;
+#define CLOUD_COVER cloudCover
+#define CLOUD_LAYER frame.clouds
+#define CLOUD_SHAPE frame.cloudShape
+#define CLOUD_MOTION frame.cloudMotion
+#define CLOUD_LOCAL_TO_PLANET frame.localToPlanet
+#include "cloud_layer.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
@@ -56,6 +72,19 @@ float fresnelWater(float c) {
   return 0.5f * a * a * (1.0f + b * b);
 }
 
+// The share of a uniform sky's light a rough sea reflects toward a view at cosine c to its mean
+// normal, whose facets tilt with mean square slope m2 (the waves the pixel does not resolve):
+// Fresnel averaged over the facets the view sees, weighted by their projected area. Toward the
+// horizon a flat sea's Fresnel nears 1, but there the view sees mostly facets tilted toward it,
+// met at steeper incidence: at 7 m/s and 1° above the horizon a rough sea reflects 0.39, not
+// 0.95. Fitted as Fresnel at the cosine (c^1.5 + (0.7 m)^1.5)^(2/3), m = √m2, within 0.05 of
+// the average (a Monte Carlo over Cox–Munk slopes, winds 0.5 to 20 m/s, all view angles).
+float roughSeaReflectance(float c, float m2) {
+  c = clamp(c, 0.0f, 1.0f);
+  float k = 0.7f * sqrt(m2);
+  return fresnelWater(pow(c * sqrt(c) + k * sqrt(k), 2.0f / 3.0f));
+}
+
 // Smith's Λ for the Beckmann distribution of total mean square slope m2, at a direction whose
 // cosine to the mean normal is c (Walter et al. 2007, eq. 27, rational fit of the erf form).
 float smithLambdaBeckmann(float c, float m2) {
@@ -81,6 +110,50 @@ float glintFactor(vec3 normal, vec3 toCamera, vec3 sun, float m2) {
   return fresnelWater(dot(halfway, sun)) * distribution * shadowing / (4.0f * cosV);
 }
 
+// The sky the sea mirrors along `reflected` where the frame draws clouds: the layer's column
+// where the ray reaches the layer's middle (from the sea point `fromCentre`, local frame from the
+// planet's centre, at altitude hSea), its base lit as the sky pass lights a cloud seen from
+// below, over the clear sky's reflection `clearSky`, which the cloud's opacity hides as the sky
+// pass composes it. Under an overcast the sea is grey with the cloud base, not the clear sky's
+// blue darkened by the clouds' shadow. `blur`: the spread of the directions the pixel reflects
+// (rad; the waves' slopes): the cover is read averaged over it, so the rougher the sea, the
+// softer the clouds in it.
+vec3 reflectedSky(vec3 fromCentre, float hSea, vec3 up, vec3 reflected, vec3 clearSky, float blur, float eclipse) {
+  // A ray a wave sends below the horizon meets the next wave: it sees what is just above the
+  // horizon (leaving it the clear sky drew blue streaks along the horizon under an overcast).
+  float below = dot(reflected, up);
+  reflected = normalize(reflected + up * (max(below, 0.02f) - below));
+  float muR = dot(reflected, up);
+  float R = frame.camera.y;
+  float cloudH = 0.5f * (CLOUD_LAYER.x + CLOUD_LAYER.y);
+  float t = raySphere(R, hSea, muR, cloudH).x;  // the sea lies below the layer: the crossing ahead
+  if (t < 0.0f) return clearSky;
+  vec3 point = fromCentre + reflected * t;
+  vec3 layerUp = normalize(point);
+  float thickness = CLOUD_LAYER.y - CLOUD_LAYER.x;
+  float muLayer = max(dot(reflected, layerUp), 0.02f);
+  // The cover averaged over the pixel's spread of rays and over the stretch the ray crosses the
+  // layer in: toward the horizon that is many clouds (the sky pass's march sees them all, and a
+  // single column's gap would mirror as a clear streak under an overcast).
+  float crossing = thickness * sqrt(1.0f - muLayer * muLayer) / muLayer;
+  float d = coverDensity(point, coverLod(max(t * blur, crossing), R + cloudH));
+  if (d <= 0.002f) return clearSky;
+  float extinction = CLOUD_LAYER.z * d;
+  // Through the columns up to density d of the layer's thickness, at the ray's slant.
+  float alpha = 1.0f - exp(-extinction * d * thickness / muLayer);
+  // Lit where the eye sees into the base: one optical depth up into the column (as the sky
+  // pass's marchLayer).
+  float hLight = CLOUD_LAYER.x + min(0.5f * d * thickness, muLayer / extinction);
+  vec3 sun = frame.sunLocal.xyz;
+  float muSLayer = dot(layerUp, sun);
+  vec3 sunLight = eclipse * sunIrradianceAt(cloudH, layerUp);
+  vec3 skyLight = eclipse * skyIrradianceAt(muSLayer);
+  vec3 base = cloudLight(hLight, d, muSLayer, cloudPhase(dot(reflected, sun)), sunLight, skyLight);
+  // (The air between the sea and the cloud is left out: the compose's haze over the sea pixel is
+  // much like it, and the clear sky's reflection here is bluer than the sky's haze at the horizon.)
+  return mix(clearSky, base, alpha);
+}
+
 void main() {
   vec3 terrainNormal;
   float ground;
@@ -96,6 +169,7 @@ void main() {
   vec2 offsetM = inAttributes.xy * frame.camera.y;
   vec2 offsetDx = dFdx(offsetM);
   vec2 offsetDy = dFdy(offsetM);
+  float footprintM = max(length(dFdx(inToCamera)), length(dFdy(inToCamera)));
   if (coverage <= 0.0f) discard;  // dry land over the whole pixel
   vec3 up = normalize(inUp);
   vec3 toCamera = normalize(inToCamera);
@@ -127,7 +201,7 @@ void main() {
   float unresolvedVariance = max(frame.water.w - resolvedVariance, 0.0f) + kSunDiscSlopeVariance;
 
   float cosView = max(dot(normal, toCamera), 0.0f);
-  float fresnel = fresnelWater(cosView);
+  float fresnel = roughSeaReflectance(cosView, unresolvedVariance);
   float muS = dot(up, sun);
   // Other bodies of a scene hide the sun and the sky above (as in terrain.frag).
   vec3 refracted;
@@ -138,7 +212,19 @@ void main() {
   // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);
   vec3 skyRadiance = skyLight / kAtmospherePi * mix(1.6f, 0.7f, clamp(dot(reflected, up), 0.0f, 1.0f));
-  vec3 glint = sunLight * glintFactor(normal, toCamera, sun, unresolvedVariance);
+  // The clouds: their shadow takes the sun's glint as it takes the sun (the compose's factor, a
+  // quarter of the light left under a thick cloud, would leave a glint under an overcast), and
+  // the light from the water body as the ground's; the sky the sea mirrors has them in it.
+  float cloudSun = 1.0f;
+  bool cloudy = kSpecClouds && frame.cloudShape.z > 0.5f;
+  if (cloudy) {
+    vec3 fromCentre = up * (frame.camera.y + frame.planet.x);
+    cloudSun = cloudSunTransmittance(fromCentre, frame.camera.y, frame.planet.x, sun, muS,
+                                     max(footprintM, 1000.0f));
+    skyRadiance = reflectedSky(fromCentre, frame.planet.x, up, reflected, skyRadiance,
+                               2.0f * sqrt(unresolvedVariance), eclipse);
+  }
+  vec3 glint = cloudSun * sunLight * glintFactor(normal, toCamera, sun, unresolvedVariance);
   vec3 specular = fresnel * skyRadiance + glint;
   // The water body: shallow colour near the coast, deep colour offshore, lit from above.
   float clarity = frame.water.x;
@@ -146,7 +232,8 @@ void main() {
   float iceCap = frame.shading.x;
   float lat = abs(inAttributes.w) + 0.04f * inAttributes.z;
   float ice = smoothstep(iceCap + 0.02f, iceCap + 0.04f, lat);  // sea ice a little poleward of the land caps
-  vec3 upwelling = mix(body, frame.colorSnow.rgb, ice) / kAtmospherePi * (sunLight * max(muS, 0.0f) + skyLight);
+  vec3 upwelling = mix(body, frame.colorSnow.rgb, ice) / kAtmospherePi * (sunLight * max(muS, 0.0f) + skyLight) *
+                   cloudGroundShadow(cloudSun);
   // Where the depth changes by more than the clarity across the pixel (the coast from far
   // away), the clear shallow strip is a small part of it: weigh in half the pixel's depth range.
   float opacity = max(1.0f - exp(-(depth + 0.5f * fwidthDepth) / clarity * 3.0f), ice);

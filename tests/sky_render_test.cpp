@@ -265,6 +265,61 @@ TEST_F(SkyRender, CloudsAreSeenFromAboveAndBelowAndDriftWithTime) {
   EXPECT_EQ(clear.render(below, sun, 0.0).image.pixels, clear.render(below, sun, 1800.0).image.pixels);
 }
 
+// Mean luminance (HDR, linear) of the rows [y0, y1) of a frame `width` wide.
+double hdrRowsLuminance(const std::vector<glm::vec4>& hdr, uint32_t width, uint32_t y0, uint32_t y1) {
+  double sum = 0.0;
+  for (uint32_t y = y0; y < y1; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const glm::vec4& c = hdr[size_t(y) * width + x];
+      sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    }
+  return sum / (double(y1 - y0) * width);
+}
+
+// Under an overcast the sea mirrors the cloud base (water.frag): grey, and toward the horizon a
+// good part of the sky's light (0.29 just below it), where it was the clear sky's blue darkened
+// by the clouds' shadow (navy under a white sky: 0.07). The clouds hide the sun's glint, which the
+// shadow's factor of a quarter left blazing. Under the clear sky the rough sea reflects at the
+// horizon Fresnel averaged over its waves' facets (about 0.4), not a mirror's (0.9).
+TEST_F(SkyRender, TheSeaUnderAnOvercastMirrorsTheCloudBase) {
+  RenderSettings settings = skySettings();
+  settings.width = 160;
+  settings.height = 90;
+  PlanetDescription overcast = resolvePreset("earth");
+  overcast.clouds.coverage = 0.95;
+  ASSERT_LT(terrainHeightM(overcast, directionFromLatLon(20, -30)), -1000.0);
+  Renderer renderer(context(), overcast, settings);
+  // From a deck, 3 degrees below the horizon: the horizon at row ~40 of 90.
+  const CameraPose deck{20, -30, 10, 0, -3};
+  const SunPose sun{135, 35};
+  const RenderResult cloudy = renderer.render(deck, sun, 0.0, true);
+  const double sky = hdrRowsLuminance(cloudy.hdr, 160, 30, 37);
+  const double sea = hdrRowsLuminance(cloudy.hdr, 160, 44, 50);
+  EXPECT_GT(sea, 0.2 * sky) << "sea " << sea << " sky " << sky;
+  EXPECT_LT(sea, 0.45 * sky) << "sea " << sea << " sky " << sky;  // the horizon still shows
+  const Rgb grey = meanColor(cloudy.image, 0, 44, 160, 50);
+  EXPECT_LT(std::abs(grey.b - grey.r), 12.0) << grey.r << " " << grey.g << " " << grey.b;
+  // The same sea without the clouds is blue.
+  SkySettings noClouds = renderer.settings().sky;
+  noClouds.clouds = false;
+  renderer.setSkySettings(noClouds);
+  const RenderResult clear = renderer.render(deck, sun, 0.0, true);
+  const Rgb blue = meanColor(clear.image, 0, 44, 160, 50);
+  EXPECT_GT(blue.b, blue.r + 30.0) << blue.r << " " << blue.g << " " << blue.b;
+  const double clearSky = hdrRowsLuminance(clear.hdr, 160, 30, 37);
+  const double clearSea = hdrRowsLuminance(clear.hdr, 160, 44, 50);
+  // The waves' facets (0.17 of the sky's light just below the horizon; a mirror's Fresnel, 0.28).
+  EXPECT_LT(clearSea, 0.22 * clearSky) << "sea " << clearSea << " sky " << clearSky;
+
+  // Toward a low sun: a glint under the clear sky, none under the overcast.
+  const CameraPose towardSun{20, -30, 10, 135, -8};
+  const SunPose low{135, 12};
+  EXPECT_GT(luminanceSpread(renderer.render(towardSun, low).image, 0, 50, 160, 90, 250.0).brightPixels, 10);
+  renderer.setSkySettings(settings.sky);
+  const Spread under = luminanceSpread(renderer.render(towardSun, low).image, 0, 50, 160, 90, 120.0);
+  EXPECT_EQ(under.brightPixels, 0) << "median " << under.median;
+}
+
 // The airless Moon: a black sky over a sunlit ground, even by day.
 TEST_F(SkyRender, AirlessSkyStaysBlackByDay) {
   Renderer renderer(context(), resolvePreset("moon"), skySettings());

@@ -152,18 +152,27 @@ std::vector<uint8_t> CloudCover::readLevel0() {
   return texels;
 }
 
-void CloudCover::writeUniforms(gpu::SkyUniforms& u, double timeS) const {
+CloudCover::Layer CloudCover::layerAt(double timeS) const {
   const CloudDescription& c = clouds_;
   const double thicknessM = c.topM - c.bottomM;
+  Layer layer;
   // A full-density column has optical depth `opacity`; clouds are about twice as wide as the
   // layer is thick, which bounds the slant path through one.
-  u.clouds = glm::vec4(float(c.bottomM), float(c.topM), float(c.opacity / thicknessM), 2.0f);
+  layer.clouds = glm::vec4(float(c.bottomM), float(c.topM), float(c.opacity / thicknessM), 2.0f);
   // One level-0 texel spans 2 / size of a face at its centre (the cube's tangent plane at 1).
   const float texelAngle = 2.0f / float(image_->extent.width);
   // Two segments per stretch of the ray in the layer: the sky pass's budget (issue 12).
-  u.cloudShape = glm::vec4(texelAngle, float(mipLevels_ - 1), 2.0f, 0.0f);
+  layer.shape = glm::vec4(texelAngle, float(mipLevels_ - 1), 2.0f, 0.0f);
   const CloudMotion motion = cloudMotion(c, radiusM_, timeS);
-  u.cloudMotion = glm::vec4(motion.weights, motion.driftRad);
+  layer.motion = glm::vec4(motion.weights, motion.driftRad);
+  return layer;
+}
+
+void CloudCover::writeUniforms(gpu::SkyUniforms& u, double timeS) const {
+  const Layer layer = layerAt(timeS);
+  u.clouds = layer.clouds;
+  u.cloudShape = layer.shape;
+  u.cloudMotion = layer.motion;
 }
 
 CloudMotion cloudMotion(const CloudDescription& clouds, double radiusM, double timeS) {

@@ -56,8 +56,15 @@ class CloudCover {
   uint32_t mipLevels() const { return mipLevels_; }
   // For tests: level 0 of the built cover (rgba8, face after face, row-major), blocking.
   std::vector<uint8_t> readLevel0();
-  // The sky pass's cloud values for a frame at `timeS`: SkyUniforms::clouds, cloudShape and
-  // cloudMotion (whether clouds are drawn at all is the sky pass's cameraPlanet.w).
+  // The layer's values for a frame at `timeS`, as SkyUniforms::clouds, cloudShape and cloudMotion
+  // hold them (the sea's FrameUniforms the same; whether clouds are drawn at all is each pass's).
+  struct Layer {
+    glm::vec4 clouds;
+    glm::vec4 shape;
+    glm::vec4 motion;
+  };
+  Layer layerAt(double timeS) const;
+  // The sky pass's: SkyUniforms::clouds, cloudShape and cloudMotion.
   void writeUniforms(gpu::SkyUniforms& u, double timeS) const;
 
  private:

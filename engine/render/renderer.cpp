@@ -298,6 +298,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     t.sunIrradianceScale = sun.irradianceScale;
     t.sunAngularRadiusRad = sun.angularRadiusRad;
     t.timeS = view.timeS;
+    t.clouds = settings_.sky.clouds;
     // The scene's other bodies, which may hide the sun from this one (eclipses).
     const glm::dmat3 sceneToBody = glm::transpose(body.bodyToScene);
     for (size_t j = 0; j < bodies_.size(); ++j)

@@ -66,6 +66,7 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // relief
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // chunks
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,    // frame texels (the frame's uniforms again)
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the cloud cover (the sea's reflection and shadow)
 };
 // terrain_split.comp: the culled triangle list and the vertices' surface in, the two lists out.
 constexpr VkDescriptorType kSplitBindingTypes[4] = {
@@ -331,6 +332,9 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
                              sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingRelief, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              relief_->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, relief_->sampler());
+    // Built with the sky tables, before any frame's terrain (Renderer::record).
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             sky.clouds().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.clouds().sampler());
   }
 
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
@@ -369,15 +373,16 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
 void TerrainPass::createWater() {
   // The sea reads the vertex buffers the compute (or CPU) heights fill; in seed 002's design
   // (heights in the vertex shader) its vertices evaluate the noise again.
-  const bool ringShadow = ring_.has_value();
+  WaterPass::Features features;
+  features.eclipses = settings_.eclipses;
+  features.ringShadow = ring_.has_value();
+  features.clouds = cloudsOverSea();
   if (noiseDrawLayout_.get()) {
     const std::vector<uint32_t> specialization = noiseVertexSpecialization(true);
-    water_ =
-        std::make_unique<WaterPass>(context_, noiseDrawLayout_.get(), colorFormat_, depthFormat_, settings_.eclipses,
-                                    ringShadow, std::span<const uint32_t>(), noiseVertexSpirv(), specialization);
+    water_ = std::make_unique<WaterPass>(context_, noiseDrawLayout_.get(), colorFormat_, depthFormat_, features,
+                                         std::span<const uint32_t>(), noiseVertexSpirv(), specialization);
   } else {
-    water_ = std::make_unique<WaterPass>(context_, layout_.get(), colorFormat_, depthFormat_, settings_.eclipses,
-                                         ringShadow, kVertexStrides);
+    water_ = std::make_unique<WaterPass>(context_, layout_.get(), colorFormat_, depthFormat_, features, kVertexStrides);
   }
 }
 
@@ -387,6 +392,8 @@ void TerrainPass::setRingShadow(const gpu::RingParams* ring) {
   // The sea's shader has the shadow's code only with rings (a specialization constant).
   if (water_ && had != ring_.has_value()) createWater();
 }
+
+bool TerrainPass::cloudsOverSea() const { return planet_.clouds.enabled && planet_.atmosphere.enabled; }
 
 TerrainPass::~TerrainPass() = default;
 
@@ -724,6 +731,12 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
   frame_.sunAngularRadiusRad = view.sunAngularRadiusRad;
   u.sunLocal = glm::vec4(glm::vec3(sunLocal), float(frame_.sunIrradiance));
   u.water = waterUniform(planet_.water, frame_.waterDrawn);
+  if (view.clouds && cloudsOverSea()) {
+    const CloudCover::Layer layer = sky_.clouds().layerAt(view.timeS);
+    u.clouds = layer.clouds;
+    u.cloudShape = glm::vec4(layer.shape.x, layer.shape.y, 1.0f, 0.0f);
+    u.cloudMotion = layer.motion;
+  }
   if (ring_) {
     u.cameraPlanet = glm::vec4(glm::vec3(view.camera.position), 1.0f);
     u.ring = *ring_;

@@ -200,7 +200,10 @@ struct TerrainView {
   // gpu::kSunIrradiance (TerrainSettings::sunIntensity scales it further) and the disc's radius.
   double sunIrradianceScale = 1.0;
   double sunAngularRadiusRad = kSunAngularRadiusRad;
-  double timeS = 0.0;                      // animation time (waves)
+  double timeS = 0.0;  // animation time (waves, clouds)
+  // Whether the sky draws the preset's clouds (SkySettings::clouds): the sea then mirrors them
+  // and lies in their shadow (water.frag).
+  bool clouds = true;
   // A scene's other bodies, which may hide the sun (eclipses): centres relative to the camera,
   // planet frame.
   std::vector<Occluder> occluders;
@@ -319,6 +322,9 @@ class TerrainPass {
   VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {}, bool earlyDepth = false);
   // The water pass, for the planet's sea (its shader with the ring shadow when ring_ is set).
   void createWater();
+  // Whether the planet has clouds over its sea (clouds and air): the sea's shader then has their
+  // reflection and shadow, which frames with clouds drawn (TerrainView::clouds) turn on.
+  bool cloudsOverSea() const;
   // Whether this frame's fill draws are split by terrain_split.comp (TerrainSettings::splitSeaFloor).
   bool splitsSeaFloor() const;
   // The split's dispatch and its barriers (recordCompute).

@@ -12,15 +12,16 @@
 namespace planet {
 
 WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
-                     bool eclipses, bool ringShadow, std::span<const uint32_t> vertexStrides,
+                     const Features& features, std::span<const uint32_t> vertexStrides,
                      std::span<const uint32_t> vertexSpirv, std::span<const uint32_t> vertexSpecialization) {
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;
   desc.vertexStrides = vertexStrides;
   desc.vertexSpirv = vertexSpirv.empty() ? std::span<const uint32_t>(kSpv_water_vert) : vertexSpirv;
   desc.vertexSpecialization = vertexSpecialization;
-  // water.frag's kSpecEclipses, kSpecRingShadow
-  const uint32_t fragmentSpecialization[] = {eclipses ? 1u : 0u, ringShadow ? 1u : 0u};
+  // water.frag's kSpecEclipses, kSpecRingShadow, kSpecClouds
+  const uint32_t fragmentSpecialization[] = {features.eclipses ? 1u : 0u, features.ringShadow ? 1u : 0u,
+                                             features.clouds ? 1u : 0u};
   desc.fragmentSpecialization = fragmentSpecialization;
   desc.fragmentSpirv = kSpv_water_frag;
   desc.colorFormat = colorFormat;
@@ -29,6 +30,7 @@ WaterPass::WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat col
   // The sea over the ground: premultiplied "over" blending, depth tested and written.
   desc.alphaBlend = true;
   desc.premultipliedAlpha = true;
+  desc.alphaKeepsUncovered = true;
   pipeline_ = {context, vk::createGraphicsPipeline(context, desc)};
 }
 

@@ -31,16 +31,24 @@ class WaterPass {
   // Timing scopes a frame records at most: "water".
   static constexpr uint32_t kTimingScopes = 1;
 
+  // What the sea's shader holds (specialization constants: lavapipe runs every branch's code).
+  struct Features {
+    bool eclipses = false;    // another body may hide the sun (a scene)
+    bool ringShadow = false;  // the body's rings shadow the sea
+    bool clouds = false;      // the planet's cloud layer: mirrored, and shadowing the sea
+  };
+
   // A pipeline over the terrain pass's `layout`, for a dynamic-rendering scope of colorFormat and
   // depthFormat. The vertices come from water.vert, or from `vertexSpirv` with its
   // specialization constants (the vertex-shader height source: terrain_noise.vert).
-  // `eclipses` false leaves the eclipse code out of the fragment shader (no other body);
-  // `ringShadow` true puts the rings' shadow in (a body with rings).
   // `vertexStrides`: the terrain's vertex buffers (GraphicsPipelineDesc), for water.vert; with
   // `vertexSpirv` (seed 002's design) none.
-  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat, bool eclipses,
-            bool ringShadow, std::span<const uint32_t> vertexStrides, std::span<const uint32_t> vertexSpirv = {},
-            std::span<const uint32_t> vertexSpecialization = {});
+  // The colour target's alpha keeps the share of the pixel that shows the ground through the sea
+  // (GraphicsPipelineDesc::alphaKeepsUncovered): the sky pass darkens only that share by the
+  // clouds' shadow, since the sea shades its own light under the clouds.
+  WaterPass(vk::Context& context, VkPipelineLayout layout, VkFormat colorFormat, VkFormat depthFormat,
+            const Features& features, std::span<const uint32_t> vertexStrides,
+            std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> vertexSpecialization = {});
 
   // Records the draw of the ground's triangles (the first `indexCount` indices of the bound index
   // buffer) with the terrain's descriptor set and index buffer bound (it binds its pipeline).

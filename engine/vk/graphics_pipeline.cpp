@@ -20,7 +20,7 @@ namespace {
 std::string storeKey(const GraphicsPipelineDesc& desc) {
   const auto& [vertexSpirv, fragmentSpirv, vertexSpecialization, fragmentSpecialization, vertexStrides, layout,
                colorFormat, depthFormat, topology, polygonMode, cullMode, frontFace, depthTest, depthWrite,
-               depthCompare, alphaBlend, premultipliedAlpha, additiveBlend] = desc;
+               depthCompare, alphaBlend, premultipliedAlpha, alphaKeepsUncovered, additiveBlend] = desc;
   // The layout goes to the store beside the key, which looks up its definition (PipelineStore::get).
   static_cast<void>(layout);
   std::string key = "graphics";
@@ -36,7 +36,7 @@ std::string storeKey(const GraphicsPipelineDesc& desc) {
   appendKey(key, cullMode);
   appendKey(key, frontFace);
   appendKey(key, depthCompare);
-  const uint8_t flags[] = {depthTest, depthWrite, alphaBlend, premultipliedAlpha, additiveBlend};
+  const uint8_t flags[] = {depthTest, depthWrite, alphaBlend, premultipliedAlpha, alphaKeepsUncovered, additiveBlend};
   appendKey(key, flags);
   return key;
 }
@@ -102,7 +102,7 @@ VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
     attachment.srcColorBlendFactor = desc.premultipliedAlpha ? VK_BLEND_FACTOR_ONE : VK_BLEND_FACTOR_SRC_ALPHA;
     attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     attachment.colorBlendOp = VK_BLEND_OP_ADD;
-    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.srcAlphaBlendFactor = desc.alphaKeepsUncovered ? VK_BLEND_FACTOR_ZERO : VK_BLEND_FACTOR_ONE;
     attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
   } else if (desc.additiveBlend) {
@@ -151,6 +151,8 @@ VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
 VkPipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc) {
   if (desc.alphaBlend && desc.additiveBlend)
     throw Error("a graphics pipeline blends either alpha or additively, not both");
+  if (desc.alphaKeepsUncovered && !desc.alphaBlend)
+    throw Error("a graphics pipeline keeps the uncovered share in alpha only with alpha blending");
   return context.pipelines.get(context.device, desc.layout, storeKey(desc), [&](VkPipelineLayout layout) {
     GraphicsPipelineDesc withLayout = desc;
     withLayout.layout = layout;

@@ -33,6 +33,10 @@ struct GraphicsPipelineDesc {
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z: nearer is larger
   bool alphaBlend = false;                           // "over" blending: src·α + dst·(1 − α)
   bool premultipliedAlpha = false;                   // with alphaBlend: src + dst·(1 − α) (colour already weighted)
+  // With alphaBlend: the target's alpha becomes dst α · (1 − α), the share of the pixel still
+  // showing what was there before (the sea: what the sky pass's cloud shadow still darkens),
+  // instead of the coverage α + dst α · (1 − α).
+  bool alphaKeepsUncovered = false;
   bool additiveBlend = false;                        // ONE + ONE: light that adds up (stars)
 };
 

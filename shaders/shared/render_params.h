@@ -37,7 +37,8 @@ GPU_CONST uint kRenderBindingTransmittance = 11u;  // sampler2D: the atmosphere'
 GPU_CONST uint kRenderBindingRelief = 12u;         // samplerCube: normal (planet frame), height m (relief_params.h)
 GPU_CONST uint kRenderBindingChunks = 13u;         // uvec2[]: the height pass's vertex runs (first vertex, count)
 GPU_CONST uint kRenderBindingFrameTexels = 14u;    // samplerBuffer: binding 0's FrameUniforms as RGBA32F texels
-GPU_CONST uint kRenderBindingCount = 15u;
+GPU_CONST uint kRenderBindingClouds = 15u;         // samplerCube: the cloud cover (engine/render/cloud_cover.h)
+GPU_CONST uint kRenderBindingCount = 16u;
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 // terrain.frag's specialization constants (TerrainPass::createDrawPipeline): ids 0 .. 6 its parts
 // (scheme, caps, lights, eclipses, detail, ring shadow, relief), then from kTerrainFragSpecColors the
@@ -115,8 +116,14 @@ struct FrameUniforms {
   // City lights on the night side (shaders/common/city_lights.glsl); drawn only where the
   // pipeline's kSpecLights is set.
   LightsParams lights;
+  // The cloud layer, which the sea mirrors and which shadows it (water.frag): the sky pass's
+  // SkyUniforms::clouds, cloudShape and cloudMotion for the frame; cloudShape.z is 1 where the
+  // frame draws clouds (all zero otherwise).
+  vec4 clouds;
+  vec4 cloudShape;
+  vec4 cloudMotion;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2128 + 272 + 48)
+GPU_ASSERT_SIZE(FrameUniforms, 2128 + 272 + 48 + 48)
 
 // The texel (vec4) where each array of FrameUniforms that the shaders index with a variable
 // starts, for reading it through kRenderBindingFrameTexels (why: terrain_common.glsl,
