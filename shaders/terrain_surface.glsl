@@ -19,6 +19,24 @@ layout(set = 0, binding = kRenderBindingRelief) uniform samplerCube reliefCube;
 #define RELIEF_POSSIBLE true
 #endif
 
+// What the shading needs of a ground pixel: the surface (surfaceDetail below) and the derivatives
+// terrain.frag took of it, in the local frame. The G-buffer's four RGBA32F texels hold it in this
+// order (terrain.frag, terrain_shade.comp).
+struct TerrainSample {
+  vec3 normal;         // unit surface normal
+  float height;        // m above the radius sphere
+  vec3 toCamera;       // from the pixel's ground point to the camera, m
+  float pixelM;        // the height's change across the pixel (fwidth), m
+  vec3 up;             // the sphere normal as interpolated (not normalized)
+  float jitter;        // the vertices' band noise
+  float sinLatitude;   // sin(latitude)
+  float footprintX;    // the ground point's move across one pixel along x, m
+  float footprintY;    // along y, m
+  float latitudeEdge;  // |latitude| / 90° across the pixel
+};
+
+// surfaceDetail takes derivatives, which a compute shader (terrain_shade.comp) has not.
+#ifndef TERRAIN_SURFACE_NO_DERIVATIVES
 // Normal (local frame) and height at this pixel from the patch levels, chosen like a mip level:
 // lod = log2(pixel footprint / finest texel), so detail changes continuously across the screen
 // (no rectangles where one level ends). Level floor(lod) and the next are blended by the
@@ -115,6 +133,8 @@ void surfaceDetail(vec2 face, vec3 up, vec3 toCamera, vec3 vertexNormal, float v
   normal = normalize(accumulatedNormal + remaining * normalize(vertexNormal));
   height = accumulatedHeight + remaining * vertexHeight;
 }
+
+#endif  // TERRAIN_SURFACE_NO_DERIVATIVES
 
 // Sky irradiance on a horizontal surface for the sun at zenith cosine muS (table on the CPU).
 // The table starts with the sun 11.5° below the horizon (muS −0.2); deeper, it fades linearly to

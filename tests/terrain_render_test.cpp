@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -16,11 +17,13 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "image_compare.h"
+#include "planet/scene_description.h"
 #include "planet/terrain_height.h"
 #include "render/relief_cube.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "vk/buffer.h"
+#include "vk/timer.h"
 
 namespace planet::test {
 namespace {
@@ -351,6 +354,81 @@ TEST_F(TerrainRender, GroundThatCannotBeSeaFloorIsDrawnFirstAndThePictureIsTheSa
   Renderer moon(context(), resolvePreset("moon"), smallSettings(true));
   moon.render({kLat, kLon, 2.0, 60.0, -20.0}, {135.0, 35.0});
   EXPECT_FALSE(moon.terrain().frame().seaFloorSplit);
+}
+
+// Deferred shading (TerrainSettings::deferredShading): the draw writes the ground's surface into
+// the G-buffer and a compute pass shades it with the same code (terrain_shade.glsl), so the
+// picture is the forward one bit for bit: over land and sea (the sea floor pushed back), at
+// night with city lights, from orbit, on bodies without a sea (the early depth test) and with
+// the seed schemes. Its scopes follow one another: the ground's draw, its shading, the sea. A
+// wireframe frame is drawn forward, and a scene (several bodies) is refused.
+TEST_F(TerrainRender, DeferredShadingDrawsTheForwardPicture) {
+  struct Case {
+    const char* name;
+    const char* preset;
+    CameraPose camera;
+    SunPose sun;
+  };
+  const Case cases[] = {
+      {"mountains, 2 m above the ground", "earth", {kLat, kLon, 2.0, 60.0, -20.0}, {135.0, 35.0}},
+      {"a coast from 1 km", "earth", {33.8, -90.0, 1000.0, 20.0, -15.0}, {135.0, 35.0}},
+      {"city lights at night from 800 km", "earth", {45.0, 5.0, 8.0e5, 0.0, -80.0}, {135.0, -40.0}},
+      {"from orbit", "earth", {kLat, kLon, 2.0e7, 0.0, -90.0}, {135.0, 35.0}},
+      {"the moon from 3 km", "moon", {10.0, 10.0, 3000.0, 0.0, -20.0}, {135.0, 20.0}},
+      {"a seed scheme (faults) from 100 km", "faults", {0.0, 0.0, 1.0e5, 0.0, -30.0}, {135.0, 35.0}},
+  };
+  RenderSettings deferredSettings = smallSettings(true);
+  deferredSettings.terrain.deferredShading = true;
+  deferredSettings.autoExposure = true;  // the night's lights show
+  RenderSettings forwardSettings = smallSettings(true);
+  forwardSettings.autoExposure = true;
+  std::string preset;
+  std::unique_ptr<Renderer> forward, deferred;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    if (preset != c.preset) {
+      preset = c.preset;
+      forward = std::make_unique<Renderer>(context(), resolvePreset(preset), forwardSettings);
+      deferred = std::make_unique<Renderer>(context(), resolvePreset(preset), deferredSettings);
+    }
+    const RenderResult a = forward->render(c.camera, c.sun);
+    const RenderResult b = deferred->render(c.camera, c.sun);
+    ASSERT_TRUE(deferred->terrain().shadesDeferred());
+    EXPECT_FALSE(forward->terrain().shadesDeferred());
+    EXPECT_EQ(a.image.pixels, b.image.pixels) << "the deferred shading changed the picture";
+    // Not a blank picture that would match anything: the ground is drawn.
+    double sum = 0.0;
+    for (size_t i = 0; i < b.image.pixels.size(); i += 4)
+      sum += (b.image.pixels[i] + b.image.pixels[i + 1] + b.image.pixels[i + 2]) / 3.0;
+    const double mean = sum / double(b.image.pixels.size() / 4);
+    std::printf("deferred shading, %s: mean %.1f of 255\n", c.name, mean);
+    EXPECT_GT(mean, 1.0);
+    if (!context().timestampValidBits) continue;
+    std::vector<std::string> names;
+    for (const vk::GpuTiming& t : b.timings) names.push_back(t.name);
+    const auto terrain = std::find(names.begin(), names.end(), "terrain");
+    ASSERT_NE(terrain, names.end());
+    ASSERT_LT(terrain + 1, names.end());
+    EXPECT_EQ(*(terrain + 1), "ground shading");
+    const vk::GpuTiming& draw = b.timings[size_t(terrain - names.begin())];
+    const vk::GpuTiming& shading = b.timings[size_t(terrain - names.begin()) + 1];
+    EXPECT_NEAR(shading.startMs, draw.startMs + draw.milliseconds, 1e-6) << "the scopes are back to back";
+    for (const vk::GpuTiming& t : a.timings) EXPECT_NE(t.name, "ground shading");
+  }
+  // The wireframe colours the edges in the draw itself: forward, in a deferred renderer too.
+  RenderSettings wireframe = deferredSettings;
+  wireframe.terrain.wireframe = true;
+  RenderSettings wireframeForward = forwardSettings;
+  wireframeForward.terrain.wireframe = true;
+  Renderer deferredWires(context(), resolvePreset("earth"), wireframe);
+  Renderer forwardWires(context(), resolvePreset("earth"), wireframeForward);
+  const CameraPose camera{kLat, kLon, 5000.0, 60.0, -10.0};
+  EXPECT_EQ(deferredWires.render(camera, {135.0, 35.0}).image.pixels,
+            forwardWires.render(camera, {135.0, 35.0}).image.pixels);
+  EXPECT_FALSE(deferredWires.terrain().shadesDeferred());
+  // A scene's bodies would share the G-buffer, which one body's uniforms shade.
+  EXPECT_EQ(errorOf([&] { Renderer scene(context(), resolveScene("system"), deferredSettings); }),
+            "terrain shading 'deferred' draws one body, the scene has 3; use 'forward'");
 }
 
 // The relief cube's lookup is left out of frames where no pixel can take it (reliefInView): low

@@ -237,6 +237,20 @@ SkyMode checkSkyMode(const std::string& mode) {
   return parseSkyMode(mode);
 }
 
+CLI::Option* addTerrainShadingOption(CLI::App& sub, std::string& shading) {
+  return sub
+      .add_option("--terrain-shading", shading,
+                  "forward: the ground shaded in the draw's fragment shader; deferred: the draw writes a G-buffer "
+                  "and a compute pass shades each pixel once (one body only; the same picture)")
+      ->capture_default_str();
+}
+
+bool checkTerrainShading(const std::string& shading) {
+  if (shading != "forward" && shading != "deferred")
+    throw UsageError(fmt::format("--terrain-shading must be forward or deferred, got '{}'", shading));
+  return shading == "deferred";
+}
+
 CLI::Option* addMeshOption(CLI::App& sub, std::string& text) {
   return sub
       .add_option("--mesh", text,

@@ -144,6 +144,12 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode);
 CLI::Option* addSkyModeOption(CLI::App& sub, std::string& mode);
 SkyMode checkSkyMode(const std::string& mode);
 
+// --terrain-shading forward|deferred (render, bench, view): where the ground is shaded
+// (TerrainSettings::deferredShading). checkTerrainShading gives whether it is deferred, or a
+// UsageError naming the text.
+CLI::Option* addTerrainShadingOption(CLI::App& sub, std::string& shading);
+bool checkTerrainShading(const std::string& shading);
+
 // --mesh auto|RINGSxVERTICES (render, bench): the clipmap's density. "auto" is meshForImage's
 // (the default mesh scaled to the image's pixels per radian, triangles the same size on screen);
 // RINGSxVERTICES fixes the rings per level and the vertices per ring of the default's levels.

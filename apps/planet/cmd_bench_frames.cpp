@@ -35,6 +35,7 @@ struct FrameBenchCommand {
   bool noLights = false;
   bool printPath = false;
   std::string sky{skyModeName(SkySettings{}.mode)};
+  std::string terrainShading = "forward";
   std::string mesh = "auto";
   std::vector<CLI::Option*> options;      // every option above: given any, `planet bench` runs the benchmark
   std::vector<CLI::Option*> fileOptions;  // --path, --json, --csv, --plot
@@ -87,6 +88,7 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   o.autoExposure = exposure.automatic;
   if (!exposure.automatic) o.exposure = exposure.fixed;
   o.skyMode = checkSkyMode(cmd.sky);
+  o.deferredShading = checkTerrainShading(cmd.terrainShading);
   const std::optional<ClipmapParams> mesh = parseMesh(cmd.mesh);
   o.mesh = meshFor(mesh, o.height, o.fovYDeg);
   o.meshAuto = !mesh;
@@ -172,6 +174,7 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
   add(bench.add_flag("--no-patches", cmd->noPatches, "Shade from vertex normals only (no patch textures)"));
   add(bench.add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side"));
   add(addSkyModeOption(bench, cmd->sky));
+  add(addTerrainShadingOption(bench, cmd->terrainShading));
   add(addMeshOption(bench, cmd->mesh));
   add(bench.add_flag("--print-path", cmd->printPath, "Print the camera path in the --path format and exit"));
   auto givenOption = [cmd] {

@@ -129,6 +129,7 @@ int runRender(const GlobalOptions& global, const RenderCommand& cmd, const CLI::
   if (!exposure.automatic) settings.sky.exposure = exposure.fixed;
   settings.sky.clouds = !cmd.noClouds;
   settings.sky.mode = checkSkyMode(cmd.sky);
+  settings.terrain.deferredShading = checkTerrainShading(cmd.terrainShading);
   settings.terrain.water = !cmd.noWater;
   settings.terrain.lights = !cmd.noLights;
   const std::optional<ClipmapParams> mesh = parseMesh(cmd.mesh);
@@ -225,6 +226,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global, int& exitCode)
   sub->add_flag("--no-water", cmd->noWater, "Leave out the water sphere (the sea floor shows)");
   sub->add_flag("--no-lights", cmd->noLights, "Leave out the preset's city lights on the night side");
   addSkyModeOption(*sub, cmd->sky);
+  addTerrainShadingOption(*sub, cmd->terrainShading);
   addMeshOption(*sub, cmd->mesh);
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runRender(global, *cmd, *sub); });

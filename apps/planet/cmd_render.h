@@ -33,6 +33,7 @@ struct RenderCommand {
   std::string mesh = "auto";  // --mesh: auto or RINGSxVERTICES
   bool noWater = false;
   std::string sky{skyModeName(SkySettings{}.mode)};
+  std::string terrainShading = "forward";
   // A video of a camera path (--path, --frames, --fps; with --scene also --path-body).
   std::string path;
   std::string pathBody;

@@ -32,6 +32,7 @@ struct ViewCommand {
   bool noLights = false;
   std::string exposure = "auto";
   std::string sky{skyModeName(SkySettings{}.mode)};
+  std::string terrainShading = "forward";
 };
 
 constexpr uint32_t kMaxFrames = 100'000'000;
@@ -56,6 +57,7 @@ int runView(const GlobalOptions& global, const ViewCommand& cmd, const CLI::App&
   options.autoExposure = exposure.automatic;
   if (!exposure.automatic) options.exposure = exposure.fixed;
   options.skyMode = checkSkyMode(cmd.sky);
+  options.deferredShading = checkTerrainShading(cmd.terrainShading);
   options.device = global.device;
   options.validation = global.validation;
   if (!std::isfinite(cmd.timeS) || std::abs(cmd.timeS) > 1e9)
@@ -134,6 +136,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global, int& exitCode) {
                   "HDR exposure before the tonemap: auto (adapts to the view as the eye does) or a fixed number")
       ->capture_default_str();
   addSkyModeOption(*sub, cmd->sky);
+  addTerrainShadingOption(*sub, cmd->terrainShading);
   sub->footer(fmt::format("Keys:\n{}", view::viewerKeyHelp()));
   checkNumbersAsText(*sub);
   sub->callback([&global, &exitCode, cmd, sub] { exitCode = runView(global, *cmd, *sub); });

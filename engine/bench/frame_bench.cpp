@@ -108,6 +108,7 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     settings.autoExposure = options.autoExposure;
     settings.sky.exposure = options.exposure;
     settings.sky.mode = options.skyMode;
+    settings.terrain.deferredShading = options.deferredShading;
     renderers.push_back(std::make_unique<Renderer>(context, planet, settings));
     // Frame times without the copy of the image to the host, which the viewer does not make.
     renderers.back()->setReadImage(false);
@@ -213,6 +214,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   else
     j["exposure"] = options.exposure;
   j["sky"] = skyModeName(options.skyMode);
+  j["terrain_shading"] = options.deferredShading ? "deferred" : "forward";
   j["frames"] = options.frames;
   j["warmup"] = options.warmup;
   j["flight_fps"] = options.flightFps;
@@ -297,11 +299,11 @@ std::string FrameBenchReport::table() const {
   const ModeRun& main = runs.front();
   std::string out = fmt::format("device: {} ({})\n", device, driver);
   out += fmt::format(
-      "preset: {} (hash {:016x}), {}x{}{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
+      "preset: {} (hash {:016x}), {}x{}{}{}{}{}, exposure {}, path: {} ({} keys, {} s), {} frames after {} "
       "warm-up\n",
       preset, presetHash, options.width, options.height, options.patches ? "" : " without patches",
-      options.lights ? "" : " without lights",
-      options.skyMode == SkyMode::Reference ? ", reference sky" : "",
+      options.lights ? "" : " without lights", options.skyMode == SkyMode::Reference ? ", reference sky" : "",
+      options.deferredShading ? ", deferred terrain shading" : "",
       options.autoExposure ? "auto" : fmt::format("{:g}", options.exposure), pathSource, pathKeys, pathDurationS,
       options.frames, options.warmup);
   out += options.flightFps > 0.0

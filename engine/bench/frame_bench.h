@@ -47,6 +47,7 @@ struct FrameBenchOptions {
   bool autoExposure = false;
   double exposure = SkySettings{}.exposure;
   SkyMode skyMode = SkyMode::Tables;  // planet bench --sky
+  bool deferredShading = false;       // planet bench --terrain-shading (TerrainSettings::deferredShading)
   // The clipmap drawn (planet bench --mesh; the CLI's default is meshForImage's for the size);
   // meshAuto only says so in the outputs.
   ClipmapParams mesh = TerrainSettings{}.mesh;
@@ -81,7 +82,7 @@ std::vector<BenchMode> benchModes(bool compare);
 // shades vertices when the draw is recorded, so a draw's vertex work lands in the pass's first
 // scope (measured: in vertex_shader mode "stars" read 1,746 ms and "terrain" 0.45 ms). The stars
 // are the same work in every mode, and so are the patch textures, which are left out.
-inline constexpr const char* kTerrainTimePasses[] = {"heights", "split", "stars", "terrain", "water"};
+inline constexpr const char* kTerrainTimePasses[] = {"heights", "split", "stars", "terrain", "ground shading", "water"};
 
 struct FrameRecord {
   uint32_t index = 0;

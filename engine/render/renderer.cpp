@@ -66,6 +66,10 @@ Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& b
   validateRenderSettings(settings);
   if (bodies.empty() || bodies.size() > kMaxSceneBodies)
     throw Error(fmt::format("a renderer draws 1 to {} bodies, got {}", kMaxSceneBodies, bodies.size()));
+  // The G-buffer holds one body's ground: its compute pass shades with that body's uniforms.
+  if (settings.terrain.deferredShading && bodies.size() > 1)
+    throw Error(
+        fmt::format("terrain shading 'deferred' draws one body, the scene has {}; use 'forward'", bodies.size()));
   createBodies(bodies, rings);
   for (const PlanetDescription& planet : bodies) {
     if (!planet.stars.enabled || !(planet.stars.brightness > 0.0)) continue;
@@ -134,6 +138,15 @@ void Renderer::createTargets() {
   color_ = {context_, vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT)};
   depth_ = {context_, vk::createImage2D(context_, extent, kDepthFormat,
                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT)};
+  if (settings_.terrain.deferredShading) {
+    for (uint32_t i = 0; i < TerrainPass::kGBufferTargets; ++i)
+      gbuffer_.emplace_back(context_,
+                            vk::createImage2D(context_, extent, TerrainPass::kGBufferFormat,
+                                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT));
+    std::vector<const vk::Image*> gbuffer;  // once the vector holds them all (it moves them as it grows)
+    for (const vk::Owned<vk::Image>& image : gbuffer_) gbuffer.push_back(&*image);
+    for (Body& body : bodies_) body.terrain->setShadingTargets(gbuffer, *hdr_);
+  }
   for (Body& body : bodies_) body.sky->setTargets(*hdr_, *depth_);
   luminance_->setSource(*hdr_);
   tonemap_->setSource(*hdr_);
@@ -146,6 +159,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   validateRenderSettings(next);
   if (width == settings_.width && height == settings_.height) return;
   // The old targets go before the new ones are made.
+  gbuffer_.clear();
   depth_.reset();
   color_.reset();
   hdr_.reset();
@@ -206,12 +220,22 @@ VkRenderingAttachmentInfo clearedAttachment(const vk::Image& image, VkImageLayou
   return attachment;  // clear value zero: black, and reversed-Z depth 0 (infinitely far)
 }
 
-void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo* color,
+// Between two passes over the frame's targets: the later one loads what the earlier one stored.
+void attachmentsBarrier(VkCommandBuffer cmd) {
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                        VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+}
+
+void beginRendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo* color, uint32_t colorCount,
                     const VkRenderingAttachmentInfo* depth) {
   VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
   rendering.renderArea = {{0, 0}, extent};
   rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
+  rendering.colorAttachmentCount = colorCount;
   rendering.pColorAttachments = color;
   rendering.pDepthAttachment = depth;
   vkCmdBeginRendering(cmd, &rendering);
@@ -438,40 +462,96 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   // pass (GpuTimer::next), and each scope holds its draws' vertex and fragment work. The barrier
   // between two passes (the later one loads what the earlier one stored) flushes the tiles. On a
   // GPU the few extra passes over a frame's targets, and their barriers, are cheap.
-  std::vector<std::pair<const char*, std::function<void()>>> sections;
+  // With deferred shading (TerrainSettings::deferredShading, one body) the ground's pass draws
+  // into the G-buffer instead, and a compute pass after it shades the ground into the HDR
+  // target, in a scope of its own ("ground shading"), before the sea's pass.
+  struct Section {
+    const char* name;
+    std::function<void()> draw;
+    TerrainPass* deferred = nullptr;  // the pass whose ground this section draws into the G-buffer
+  };
+  std::vector<Section> sections;
   if (stars_)
-    sections.emplace_back("stars", [&] { stars_->recordDraw(cmd, starsToClip_, float(settings_.height), nullptr); });
-  sections.emplace_back("terrain", [&] {
-    for (Body& body : bodies_) body.terrain->recordDraw(cmd, nullptr);
-  });
+    sections.push_back({"stars", [&] { stars_->recordDraw(cmd, starsToClip_, float(settings_.height), nullptr); }});
+  TerrainPass* deferred =
+      !gbuffer_.empty() && bodies_[0].terrain->shadesDeferred() ? bodies_[0].terrain.get() : nullptr;
+  sections.push_back({"terrain",
+                      [&] {
+                        for (Body& body : bodies_) body.terrain->recordDraw(cmd, nullptr);
+                      },
+                      deferred});
   if (std::any_of(bodies_.begin(), bodies_.end(), [](const Body& body) { return body.terrain->waterDrawn(); }))
-    sections.emplace_back("water", [&] {
-      for (Body& body : bodies_) body.terrain->recordWaterDraw(cmd, nullptr);
-    });
+    sections.push_back({"water", [&] {
+                          for (Body& body : bodies_) body.terrain->recordWaterDraw(cmd, nullptr);
+                        }});
   // The rings come later, between the compose passes (composeOrder_).
-  if (timer) timer->begin(cmd, sections.front().first);
+  if (deferred) {
+    for (vk::Owned<vk::Image>& image : gbuffer_) {
+      image->layout = VK_IMAGE_LAYOUT_UNDEFINED;
+      vk::transitionImage(cmd, *image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          0, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    }
+    // The G-buffer's draw has no HDR attachment to clear: a pass of its own clears it when the
+    // ground's is the frame's first.
+    if (sections.front().deferred) {
+      const VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      const VkRenderingAttachmentInfo depthAttachment =
+          clearedAttachment(depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+      beginRendering(cmd, extent, &hdrAttachment, 1, &depthAttachment);
+      vkCmdEndRendering(cmd);
+      attachmentsBarrier(cmd);
+    }
+  }
+  if (timer) timer->begin(cmd, sections.front().name);
   for (size_t k = 0; k < sections.size(); ++k) {
-    VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const Section& section = sections[k];
+    const bool first = k == 0 && !section.deferred;  // clears the targets
     VkRenderingAttachmentInfo depthAttachment = clearedAttachment(depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-    if (k > 0) hdrAttachment.loadOp = depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    beginRendering(cmd, extent, &hdrAttachment, &depthAttachment);
-    sections[k].second();
+    if (!first) depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    if (section.deferred) {
+      VkRenderingAttachmentInfo gbuffer[TerrainPass::kGBufferTargets];
+      for (uint32_t i = 0; i < TerrainPass::kGBufferTargets; ++i)
+        gbuffer[i] = clearedAttachment(*gbuffer_[i], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      gbuffer[TerrainPass::kGBufferTargets - 1].clearValue.color.float32[1] = TerrainPass::kGBufferEmpty;
+      beginRendering(cmd, extent, gbuffer, TerrainPass::kGBufferTargets, &depthAttachment);
+    } else {
+      VkRenderingAttachmentInfo hdrAttachment = clearedAttachment(hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      if (!first) hdrAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+      beginRendering(cmd, extent, &hdrAttachment, 1, &depthAttachment);
+    }
+    section.draw();
+    const char* next = k + 1 < sections.size() ? sections[k + 1].name : nullptr;
     if (timer) {
-      if (k + 1 < sections.size())
-        timer->next(cmd, sections[k + 1].first);
+      if (section.deferred)
+        timer->next(cmd, "ground shading");
+      else if (next)
+        timer->next(cmd, next);
       else
         timer->end(cmd);
     }
     vkCmdEndRendering(cmd);
-    if (k + 1 < sections.size())
-      vk::memoryBarrier(cmd,
-                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
-                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    if (section.deferred) {
+      // The G-buffer's writes to the compute pass's reads, the HDR target's (the stars') to its
+      // writes; then back to a colour attachment for the passes after it.
+      for (vk::Owned<vk::Image>& image : gbuffer_)
+        vk::transitionImage(cmd, *image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      section.deferred->recordShade(cmd, settings_.width, settings_.height);
+      vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+      if (timer) {
+        if (next)
+          timer->next(cmd, next);
+        else
+          timer->end(cmd);
+      }
+    }
+    if (next) attachmentsBarrier(cmd);
   }
   // The compose pass reads and writes the HDR colour and samples the depth.
   toComposeLayouts(cmd);
@@ -505,7 +585,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   vk::transitionImage(cmd, color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   const VkRenderingAttachmentInfo colorAttachment = clearedAttachment(color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  beginRendering(cmd, extent, &colorAttachment, nullptr);
+  beginRendering(cmd, extent, &colorAttachment, 1, nullptr);
   tonemap_->recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
 }
@@ -547,7 +627,7 @@ void Renderer::recordRings(VkCommandBuffer cmd, RingPass& rings, vk::GpuTimer* t
   VkRenderingAttachmentInfo depthAttachment = color;
   depthAttachment.imageView = depth.view;
   depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  beginRendering(cmd, {settings_.width, settings_.height}, &color, &depthAttachment);
+  beginRendering(cmd, {settings_.width, settings_.height}, &color, 1, &depthAttachment);
   rings.recordDraw(cmd, timer);
   vkCmdEndRendering(cmd);
   // Back for the next compose pass (or the luminance and tonemap passes, through the barrier

@@ -213,6 +213,8 @@ class Renderer {
   vk::Owned<vk::Image> hdr_;
   vk::Owned<vk::Image> color_;
   vk::Owned<vk::Image> depth_;
+  // The ground's G-buffer (TerrainSettings::deferredShading; TerrainPass::kGBufferTargets), else empty.
+  std::vector<vk::Owned<vk::Image>> gbuffer_;
   glm::mat4 starsToClip_{1.0f};
   uint32_t preparedSlot_ = UINT32_MAX;    // of the last prepare(), until its record()
   vk::GpuTimer timers_[kFramesInFlight];  // one query pool per frame slot

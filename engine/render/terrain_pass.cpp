@@ -27,6 +27,9 @@
 #include "reference/terrain_surface_cpu.h"
 #include "spv/terrain.frag.h"
 #include "spv/terrain_early_depth.frag.h"
+#include "spv/terrain_gbuffer.frag.h"
+#include "spv/terrain_gbuffer_early_depth.frag.h"
+#include "spv/terrain_shade.comp.h"
 #include "spv/terrain.vert.h"
 #include "spv/terrain_noise.vert.h"
 #include "spv/terrain_noise_no_craters.vert.h"
@@ -67,7 +70,15 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,          // chunks
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,    // frame texels (the frame's uniforms again)
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the cloud cover (the sea's reflection and shadow)
+    // The deferred shading (written by setShadingTargets): the G-buffer's four images, the HDR target.
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
 };
+static_assert(gpu::kRenderBindingLatitudeFootprint - gpu::kRenderBindingNormalHeight + 1 ==
+              TerrainPass::kGBufferTargets);
 // terrain_split.comp: the culled triangle list and the vertices' surface in, the two lists out.
 constexpr VkDescriptorType kSplitBindingTypes[4] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
@@ -411,14 +422,7 @@ std::vector<uint32_t> TerrainPass::noiseVertexSpecialization(bool water) const {
   return values;
 }
 
-VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading, bool earlyDepth) {
-  vk::GraphicsPipelineDesc desc;
-  desc.vertexSpirv = kSpv_terrain_vert;
-  // Without a sea the shader writes no depth, and its variant tests the depth before shading
-  // (terrain.frag): the pixels of ground hidden behind nearer ground are not shaded.
-  // With one, the ground that cannot be sea floor gets that variant too (splitsSeaFloor).
-  desc.fragmentSpirv =
-      planet_.hasOcean && !earlyDepth ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
+std::vector<uint32_t> TerrainPass::shadingSpecialization(bool wireframe, const TerrainShading& shading) const {
   // The colour scheme, the polar caps, the eclipses and the frame's shading (TerrainShading) as
   // specialization constants (terrain.frag): lavapipe runs every side of a branch, and the seed
   // schemes' per-pixel noise (or the lights') would cost every planet. Then the planet's colours.
@@ -432,17 +436,34 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
   static_assert(std::size(parts) == gpu::kTerrainFragSpecColors);
   std::vector<uint32_t> specialization(std::begin(parts), std::end(parts));
   appendColorSpecialization(specialization, planet_.colors, planet_.materials);
-  desc.fragmentSpecialization = specialization;
-  desc.layout = layout_.get();
-  std::vector<uint32_t> vertexSpecialization;
+  return specialization;
+}
+
+void TerrainPass::setDrawVertexStage(vk::GraphicsPipelineDesc& desc,
+                                     std::vector<uint32_t>& vertexSpecialization) const {
   if (noiseDrawLayout_.get()) {  // HeightSource::VertexShader: no vertex input
     vertexSpecialization = noiseVertexSpecialization(false);
     desc.vertexSpirv = noiseVertexSpirv();
     desc.vertexSpecialization = vertexSpecialization;
     desc.layout = noiseDrawLayout_.get();
   } else {
+    desc.vertexSpirv = kSpv_terrain_vert;
     desc.vertexStrides = kVertexStrides;
+    desc.layout = layout_.get();
   }
+}
+
+VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading& shading, bool earlyDepth) {
+  vk::GraphicsPipelineDesc desc;
+  // Without a sea the shader writes no depth, and its variant tests the depth before shading
+  // (terrain.frag): the pixels of ground hidden behind nearer ground are not shaded.
+  // With one, the ground that cannot be sea floor gets that variant too (splitsSeaFloor).
+  desc.fragmentSpirv =
+      planet_.hasOcean && !earlyDepth ? std::span<const uint32_t>(kSpv_terrain_frag) : kSpv_terrain_early_depth_frag;
+  const std::vector<uint32_t> specialization = shadingSpecialization(wireframe, shading);
+  desc.fragmentSpecialization = specialization;
+  std::vector<uint32_t> vertexSpecialization;
+  setDrawVertexStage(desc, vertexSpecialization);
   desc.colorFormat = colorFormat_;
   desc.depthFormat = depthFormat_;
   desc.polygonMode = wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
@@ -451,6 +472,57 @@ VkPipeline TerrainPass::createDrawPipeline(bool wireframe, const TerrainShading&
   desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   desc.cullMode = wireframe ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
   return vk::createGraphicsPipeline(context_, desc);
+}
+
+VkPipeline TerrainPass::createGBufferPipeline(const TerrainShading& shading, bool earlyDepth) {
+  // The draw's surface takes only the relief of the shading (terrain_surface.glsl): the others
+  // cleared, so that the pipeline store shares one pipeline between the keys that differ in them.
+  TerrainShading surface;
+  surface.relief = shading.relief;
+  vk::GraphicsPipelineDesc desc;
+  desc.fragmentSpirv = planet_.hasOcean && !earlyDepth ? std::span<const uint32_t>(kSpv_terrain_gbuffer_frag)
+                                                       : kSpv_terrain_gbuffer_early_depth_frag;
+  const std::vector<uint32_t> specialization = shadingSpecialization(false, surface);
+  desc.fragmentSpecialization = specialization;
+  std::vector<uint32_t> vertexSpecialization;
+  setDrawVertexStage(desc, vertexSpecialization);
+  desc.colorFormat = kGBufferFormat;
+  desc.colorAttachments = kGBufferTargets;
+  desc.depthFormat = depthFormat_;
+  desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // as createDrawPipeline's
+  desc.cullMode = VK_CULL_MODE_BACK_BIT;
+  return vk::createGraphicsPipeline(context_, desc);
+}
+
+VkPipeline TerrainPass::createShadePipeline(const TerrainShading& shading) {
+  // The relief is the draw's (createGBufferPipeline): cleared, as above.
+  TerrainShading shade = shading;
+  shade.relief = false;
+  return vk::createComputePipelineWithLayout(context_, kSpv_terrain_shade_comp, layout_.get(),
+                                             shadingSpecialization(false, shade));
+}
+
+void TerrainPass::setShadingTargets(std::span<const vk::Image* const> gbuffer, const vk::Image& color) {
+  if (gbuffer.size() != kGBufferTargets)
+    throw Error(
+        fmt::format("TerrainPass::setShadingTargets: {} G-buffer images, not {}", gbuffer.size(), kGBufferTargets));
+  for (VkDescriptorSet set : sets_) {
+    for (uint32_t i = 0; i < kGBufferTargets; ++i)
+      vk::writeImageDescriptor(context_, set, gpu::kRenderBindingNormalHeight + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                               gbuffer[i]->view, VK_IMAGE_LAYOUT_GENERAL);
+    vk::writeImageDescriptor(context_, set, gpu::kRenderBindingShadedColor, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             color.view, VK_IMAGE_LAYOUT_GENERAL);
+  }
+  shadingTargets_ = true;
+}
+
+void TerrainPass::recordShade(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+  if (!shadesDeferred()) throw Error("TerrainPass::recordShade in a frame that does not shade deferred");
+  if (!shadingTargets_) throw Error("TerrainPass::recordShade before setShadingTargets");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadePipelines_[frame_.shading.key()].get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+  const uint32_t size = gpu::kTerrainShadeWorkgroupSize;
+  vkCmdDispatch(cmd, (width + size - 1) / size, (height + size - 1) / size, 1);
 }
 
 TerrainShading TerrainPass::shadingFor(const TerrainView& view, bool lodFrozen) const {
@@ -531,10 +603,19 @@ void TerrainPass::prepareShadingPipelines() {
         shading.ringShadow = ring_.has_value();
         shading.relief = relief;
         buildFillPipeline(shading);
+        if (settings_.deferredShading && !shadePipelines_[shading.key()].get())
+          shadePipelines_[shading.key()] = {context_, createShadePipeline(shading)};
       }
 }
 
 void TerrainPass::buildFillPipeline(const TerrainShading& shading) {
+  if (settings_.deferredShading) {  // the G-buffer draws instead (the compute pass: prepare)
+    vk::Owned<VkPipeline>& fill = gbufferPipelines_[shading.key()];
+    if (!fill.get()) fill = {context_, createGBufferPipeline(shading, false)};
+    vk::Owned<VkPipeline>& dry = gbufferDryPipelines_[shading.key()];
+    if (splitPipeline_.get() && !dry.get()) dry = {context_, createGBufferPipeline(shading, true)};
+    return;
+  }
   vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
   if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
   vk::Owned<VkPipeline>& dry = dryPipelines_[shading.key()];
@@ -657,6 +738,8 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   if (!info.wireframe) {
     frame_.draws = drawsFor(view, info.shading, settings_.shadingPerFrame && !info.lodFrozen);
     for (const TerrainDraw& draw : frame_.draws) buildFillPipeline(draw.shading);
+    vk::Owned<VkPipeline>& shade = shadePipelines_[info.shading.key()];
+    if (shadesDeferred() && !shade.get()) shade = {context_, createShadePipeline(info.shading)};
   }
 
   // What the heights depend on: unchanged while frozen (unless a toggle changes the patch layout).
@@ -955,7 +1038,9 @@ void TerrainPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     const int lists = frame_.seaFloorSplit ? 2 : 1;
     for (int list = 0; list < lists; ++list) {
       if (frame_.seaFloorSplit) vkCmdBindIndexBuffer(cmd, splitIndices_[slot_][list]->buffer, 0, VK_INDEX_TYPE_UINT32);
-      const auto& pipelines = frame_.seaFloorSplit && list == 0 ? dryPipelines_ : fillPipelines_;
+      const bool dryList = frame_.seaFloorSplit && list == 0;
+      const auto& pipelines = shadesDeferred() ? (dryList ? gbufferDryPipelines_ : gbufferPipelines_)
+                                               : (dryList ? dryPipelines_ : fillPipelines_);
       for (const TerrainDraw& draw : frame_.draws) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[draw.shading.key()].get());
         vkCmdDrawIndexed(cmd, draw.indexCount, 1, draw.firstIndex, 0, 0);

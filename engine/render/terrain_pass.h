@@ -33,6 +33,7 @@
 namespace planet::vk {
 class Context;
 class GpuTimer;
+struct GraphicsPipelineDesc;
 }  // namespace planet::vk
 
 namespace planet {
@@ -93,6 +94,12 @@ struct TerrainSettings {
   // its depth pushed back under the sea (terrain_split.comp). Planets with a sea, the compute and
   // CPU heights. Off: all of it as before (to test the pictures against).
   bool splitSeaFloor = true;
+  // Shade the ground in a compute pass (terrain_shade.comp) over a G-buffer the draw writes
+  // (terrain.frag's TERRAIN_GBUFFER variant; TerrainPass::setShadingTargets), not in the draw's
+  // fragment shader: each pixel is shaded once, whatever the depth test let through, and GPUs
+  // whose graphics pipeline has a small part of the chip (the H100 and H200) shade on all of it.
+  // The same code shades both ways, so the pictures are the same. One body only (Renderer).
+  bool deferredShading = false;
 
   HeightSource heightSource = HeightSource::Compute;
   unsigned cpuThreads = 0;  // HeightSource::Cpu: threads (0: one per hardware thread)
@@ -214,9 +221,16 @@ struct TerrainView {
 
 class TerrainPass {
  public:
-  // Timing scopes a frame records at most: "heights", "patches", "split", "terrain", and the
-  // water pass's.
-  static constexpr uint32_t kTimingScopes = 4 + WaterPass::kTimingScopes;
+  // Timing scopes a frame records at most: "heights", "patches", "split", "terrain", "ground
+  // shading" (the Renderer's, around recordShade), and the water pass's.
+  static constexpr uint32_t kTimingScopes = 5 + WaterPass::kTimingScopes;
+  // The deferred shading's G-buffer (TerrainSettings::deferredShading): kGBufferTargets images of
+  // kGBufferFormat with colour-attachment and storage usage, drawn in this order (terrain.frag's
+  // TERRAIN_GBUFFER outputs). The last one's second channel cleared to kGBufferEmpty tells the
+  // pixels without ground.
+  static constexpr VkFormat kGBufferFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  static constexpr uint32_t kGBufferTargets = 4;
+  static constexpr float kGBufferEmpty = -1.0f;
 
   // `sky` provides the transmittance table and sky irradiance the shading uses; it must outlive the pass.
   TerrainPass(vk::Context& context, const PlanetDescription& planet, const TerrainSettings& settings,
@@ -242,6 +256,17 @@ class TerrainPass {
   void recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
   void recordWaterDraw(VkCommandBuffer cmd, vk::GpuTimer* timer);
   bool waterDrawn() const { return frame_.waterDrawn; }
+  // Whether the last prepared frame draws the ground into the G-buffer for recordShade (deferred
+  // shading, and not the wireframe, which the draw colours itself).
+  bool shadesDeferred() const { return settings_.deferredShading && !frame_.wireframe; }
+  // Points the deferred shading at the G-buffer (kGBufferTargets images) and the HDR target it
+  // shades into. Call before the first frame and after the targets change, while no frame that
+  // uses the old ones is executing.
+  void setShadingTargets(std::span<const vk::Image* const> gbuffer, const vk::Image& color);
+  // The deferred shading of the last prepared frame, after its draw (recordDraw): every pixel of
+  // the width × height targets that holds ground. The G-buffer and the HDR target in the
+  // GENERAL layout, the draw's writes visible to compute shaders.
+  void recordShade(VkCommandBuffer cmd, uint32_t width, uint32_t height);
 
   // Debug (the viewer): while frozen, prepare() keeps the orientation, rings, octave tables and
   // patch layout of the last frame prepared before freezing, and that mesh is drawn from wherever
@@ -320,6 +345,16 @@ class TerrainPass {
   // earlyDepth: the variant that writes no depth and tests it before shading (terrain.frag), which
   // planets without a sea always draw with.
   VkPipeline createDrawPipeline(bool wireframe, const TerrainShading& shading = {}, bool earlyDepth = false);
+  // The deferred shading's pieces: the draw into the G-buffer (terrain.frag's TERRAIN_GBUFFER
+  // variant, which takes only the relief of `shading`), and the compute pass that shades it.
+  VkPipeline createGBufferPipeline(const TerrainShading& shading, bool earlyDepth);
+  VkPipeline createShadePipeline(const TerrainShading& shading);
+  // The ground draws' vertex stage and layout: terrain.vert over the vertex buffers, or
+  // terrain_noise.vert (HeightSource::VertexShader, no vertex input) specialized with
+  // `vertexSpecialization`, which must outlive the pipeline's creation.
+  void setDrawVertexStage(vk::GraphicsPipelineDesc& desc, std::vector<uint32_t>& vertexSpecialization) const;
+  // The ground's specialization constants for `shading` (terrain.frag, terrain_shade.comp).
+  std::vector<uint32_t> shadingSpecialization(bool wireframe, const TerrainShading& shading) const;
   // The water pass, for the planet's sea (its shader with the ring shadow when ring_ is set).
   void createWater();
   // Whether the planet has clouds over its sea (clouds and air): the sea's shader then has their
@@ -420,6 +455,13 @@ class TerrainPass {
   vk::Owned<VkPipelineLayout> splitLayout_;
   vk::Owned<VkPipeline> splitPipeline_;
   std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> dryPipelines_;
+  // Deferred shading (TerrainSettings::deferredShading): the G-buffer draws in place of the fill
+  // and dry pipelines (the same key; only the relief differs between them), and the compute
+  // pass, by the frame's shading key; each on first use.
+  std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> gbufferPipelines_;
+  std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> gbufferDryPipelines_;
+  std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> shadePipelines_;
+  bool shadingTargets_ = false;       // setShadingTargets was called
   std::unique_ptr<WaterPass> water_;  // planets with an ocean, except HeightSource::VertexShader
 
   uint32_t slot_ = 0;  // of the last prepare()

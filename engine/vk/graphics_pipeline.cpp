@@ -19,8 +19,8 @@ namespace {
 // until the key takes it (or says here why not, as for the layout).
 std::string storeKey(const GraphicsPipelineDesc& desc) {
   const auto& [vertexSpirv, fragmentSpirv, vertexSpecialization, fragmentSpecialization, vertexStrides, layout,
-               colorFormat, depthFormat, topology, polygonMode, cullMode, frontFace, depthTest, depthWrite,
-               depthCompare, alphaBlend, premultipliedAlpha, alphaKeepsUncovered, additiveBlend] = desc;
+               colorFormat, colorAttachments, depthFormat, topology, polygonMode, cullMode, frontFace, depthTest,
+               depthWrite, depthCompare, alphaBlend, premultipliedAlpha, alphaKeepsUncovered, additiveBlend] = desc;
   // The layout goes to the store beside the key, which looks up its definition (PipelineStore::get).
   static_cast<void>(layout);
   std::string key = "graphics";
@@ -30,6 +30,7 @@ std::string storeKey(const GraphicsPipelineDesc& desc) {
   appendKeySpan(key, fragmentSpecialization);
   appendKeySpan(key, vertexStrides);
   appendKey(key, colorFormat);
+  appendKey(key, colorAttachments);
   appendKey(key, depthFormat);
   appendKey(key, topology);
   appendKey(key, polygonMode);
@@ -114,17 +115,19 @@ VkPipeline createUnshared(Context& context, const GraphicsPipelineDesc& desc) {
     attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
   }
+  const std::vector<VkPipelineColorBlendAttachmentState> attachments(desc.colorAttachments, attachment);
+  const std::vector<VkFormat> colorFormats(desc.colorAttachments, desc.colorFormat);
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
-  blend.pAttachments = &attachment;
+  blend.attachmentCount = desc.colorAttachments;
+  blend.pAttachments = attachments.data();
   VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
   dynamic.dynamicStateCount = 2;
   dynamic.pDynamicStates = dynamicStates;
 
   VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachmentFormats = &desc.colorFormat;
+  rendering.colorAttachmentCount = desc.colorAttachments;
+  rendering.pColorAttachmentFormats = colorFormats.data();
   rendering.depthAttachmentFormat = desc.depthFormat;
 
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};

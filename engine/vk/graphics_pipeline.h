@@ -23,6 +23,8 @@ struct GraphicsPipelineDesc {
   std::span<const uint32_t> vertexStrides;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  // Colour attachments, all of colorFormat and blended alike (the ground's G-buffer has four).
+  uint32_t colorAttachments = 1;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no depth attachment
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;  // LINE needs the fillModeNonSolid feature

@@ -38,9 +38,19 @@ GPU_CONST uint kRenderBindingRelief = 12u;         // samplerCube: normal (plane
 GPU_CONST uint kRenderBindingChunks = 13u;         // uvec2[]: the height pass's vertex runs (first vertex, count)
 GPU_CONST uint kRenderBindingFrameTexels = 14u;    // samplerBuffer: binding 0's FrameUniforms as RGBA32F texels
 GPU_CONST uint kRenderBindingClouds = 15u;         // samplerCube: the cloud cover (engine/render/cloud_cover.h)
-GPU_CONST uint kRenderBindingCount = 16u;
+// The deferred shading's (TerrainSettings::deferredShading; terrain_shade.comp): the G-buffer that
+// terrain.frag's TERRAIN_GBUFFER variant writes (TerrainSample, four RGBA32F storage images) and
+// the HDR target (RGBA16F storage image). Written only when the pass shades deferred.
+GPU_CONST uint kRenderBindingNormalHeight = 16u;
+GPU_CONST uint kRenderBindingToCameraPixel = 17u;
+GPU_CONST uint kRenderBindingUpJitter = 18u;
+GPU_CONST uint kRenderBindingLatitudeFootprint = 19u;
+GPU_CONST uint kRenderBindingShadedColor = 20u;
+GPU_CONST uint kRenderBindingCount = 21u;
+GPU_CONST uint kTerrainShadeWorkgroupSize = 8u;  // its workgroups: 8 × 8 pixels
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
-// terrain.frag's specialization constants (TerrainPass::createDrawPipeline): ids 0 .. 6 its parts
+// terrain.frag's specialization constants (TerrainPass::createDrawPipeline; terrain_shade.comp
+// takes the same, relief aside): ids 0 .. 6 its parts
 // (scheme, caps, lights, eclipses, detail, ring shadow, relief), then from kTerrainFragSpecColors the
 // planet's kTerrainFragColorCount surface colours, three floats each (terrain_colors.glsl).
 GPU_CONST uint kTerrainFragSpecColors = 7u;

@@ -1,10 +1,10 @@
 # Build-time GLSL -> SPIR-V, embedded in the binary as generated C++ headers.
 #
 # planet_add_shaders(TARGET <name> SOURCES <file.comp|.vert|.frag ...>
-#                    [VARIANTS <file>:<suffix>:<MACRO> ...])
+#                    [VARIANTS <file>:<suffix>:<MACRO>[+<MACRO>...] ...])
 # creates an INTERFACE library <name> whose include directory holds spv/<file>.h
 # with `const uint32_t kSpv_<file_with_underscores>[]`. Each VARIANTS entry compiles
-# <file> once more with MACRO defined, as spv/<stem>_<suffix>.<ext>.h with
+# <file> once more with each MACRO defined, as spv/<stem>_<suffix>.<ext>.h with
 # kSpv_<stem>_<suffix>_<ext>[] (a shader whose text differs by an #ifdef only). glslangValidator
 # writes a depfile for every shader so that editing an #included file rebuilds it.
 
@@ -39,14 +39,17 @@ function(planet_add_shaders)
     string(REPLACE ":" ";" parts ${variant})
     list(LENGTH parts partCount)
     if(NOT partCount EQUAL 3)
-      message(FATAL_ERROR "planet_add_shaders: variant '${variant}' is not <file>:<suffix>:<MACRO>")
+      message(FATAL_ERROR "planet_add_shaders: variant '${variant}' is not <file>:<suffix>:<MACRO>[+<MACRO>...]")
     endif()
     list(GET parts 0 src)
     list(GET parts 1 suffix)
-    list(GET parts 2 macroName)
+    list(GET parts 2 macroNames)
     get_filename_component(stem ${src} NAME_WE)
     get_filename_component(ext ${src} LAST_EXT)
-    planet_compile_shader(${src} ${stem}_${suffix}${ext} -D${macroName})
+    # Several macros joined by '+': each defined.
+    string(REPLACE "+" ";" macroList ${macroNames})
+    list(TRANSFORM macroList PREPEND "-D")
+    planet_compile_shader(${src} ${stem}_${suffix}${ext} ${macroList})
   endforeach()
   add_custom_target(${ARG_TARGET}_compile DEPENDS ${headers})
   add_library(${ARG_TARGET} INTERFACE)

@@ -88,6 +88,7 @@ Viewer::Viewer(const ViewOptions& viewOptions) : options_(viewOptions) {
   settings_.autoExposure = options.autoExposure;
   settings_.exposure = options.exposure;
   settings_.skyMode = options.skyMode;
+  settings_.deferredShading = options.deferredShading;
   settings_.lights = options.lights;
   createWindowAndContext();
   settings_.quality = options.quality.value_or(defaultViewQuality(context_->info.isCpu()));

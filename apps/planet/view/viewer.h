@@ -33,6 +33,7 @@ struct ViewOptions {
   bool autoExposure = true;
   double exposure = 10.0;  // SkySettings{}.exposure
   SkyMode skyMode = SkyMode::Tables;   // planet view --sky
+  bool deferredShading = false;        // planet view --terrain-shading (TerrainSettings::deferredShading)
   // A scene of several bodies instead of `planet` (planet view --scene): the camera starts on
   // body `sceneBody` at `camera`, the scene's clock at sceneTimeS, running timeScale times real
   // time; T travels to the next body. travelTo starts the autopilot at once (tests, demos).

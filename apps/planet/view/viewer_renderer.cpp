@@ -25,6 +25,7 @@ RenderSettings ViewerRenderer::renderSettings(const ViewerSettings& settings, Vk
   base.sky.exposure = settings.exposure;
   base.autoExposure = settings.autoExposure;
   base.sky.mode = settings.skyMode;
+  base.terrain.deferredShading = settings.deferredShading;
   RenderSettings render = viewRenderSettings(base, settings.quality, window.width, window.height);
   render.terrain.mesh = settings.mesh;
   return render;

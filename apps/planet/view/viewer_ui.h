@@ -35,6 +35,7 @@ struct ViewerSettings {
   bool autoExposure = true;
   double exposure = SkySettings{}.exposure;
   SkyMode skyMode = SkyMode::Tables;
+  bool deferredShading = false;  // TerrainSettings::deferredShading (planet view --terrain-shading)
   // The sun is fixed in the planet frame: the point it stands over (subsolar point).
   double sunLatitudeDeg = 0.0;
   double sunLongitudeDeg = 0.0;
