@@ -742,6 +742,7 @@ TEST(Cli, BenchReportsEveryFieldWithConsistentTimesAndCompareRatios) {
   };
   checkSummary(j["frame_ms"], "frame_ms ");
   checkSummary(j["gpu_ms"], "gpu_ms ");
+  checkSummary(j["prepare_ms"], "prepare_ms ");
   checkSummary(j["terrain_ms"], "terrain_ms ");
   for (const char* pass : {"heights", "terrain"}) checkSummary(j["passes"][pass], pass);
   EXPECT_GT(j["fps"].get<double>(), 0.0);
@@ -763,6 +764,9 @@ TEST(Cli, BenchReportsEveryFieldWithConsistentTimesAndCompareRatios) {
     // wall-clock frame contains that span.
     EXPECT_LE(sum, f["gpu_ms"].get<double>() + 1e-6) << f.dump();
     EXPECT_LE(f["gpu_ms"].get<double>(), f["frame_ms"].get<double>()) << f.dump();
+    // The CPU's preparation comes before the submission, outside the GPU's span.
+    EXPECT_GT(f["prepare_ms"].get<double>(), 0.0) << f.dump();
+    EXPECT_LE(f["prepare_ms"].get<double>(), f["cpu_ms"].get<double>() + 1e-6) << f.dump();
     EXPECT_GT(f["triangles"].get<int64_t>(), 0);
     EXPECT_GT(f["vertices_evaluated"].get<int64_t>(), 0);
     EXPECT_GT(f["m_per_vertex_nadir"].get<double>(), 0.0);

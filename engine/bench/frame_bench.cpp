@@ -35,6 +35,7 @@ FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResu
   f.camera = result.camera;
   f.heightAboveGroundM = result.terrain.heightAboveGroundM;
   f.frameMs = frameMs;
+  f.prepareMs = result.prepareMs;
   f.passes = std::move(result.timings);
   if (!f.passes.empty()) {
     double first = f.passes.front().startMs, last = first;
@@ -69,6 +70,7 @@ void summarizeRun(ModeRun& run) {
   run.frameMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.frameMs; });
   run.gpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.gpuMs; });
   run.cpuMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuMs(); });
+  run.prepareMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.prepareMs; });
   run.terrainMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.terrainMs(); });
   run.cpuHeightsMs = summaryOf(run.frames, [](const FrameRecord& f) { return f.cpuHeightsMs; });
   for (const std::string& name : run.passNames)
@@ -225,6 +227,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["frame_ms"] = planet::toJson(main.frameMs);
   j["gpu_ms"] = planet::toJson(main.gpuMs);
   j["cpu_ms"] = planet::toJson(main.cpuMs);
+  j["prepare_ms"] = planet::toJson(main.prepareMs);
   j["fps"] = main.frameMs.median > 0.0 ? 1000.0 / main.frameMs.median : 0.0;
   j["passes"] = nlohmann::json::object();
   for (size_t p = 0; p < main.passNames.size(); ++p) j["passes"][main.passNames[p]] = planet::toJson(main.passMs[p]);
@@ -263,6 +266,7 @@ nlohmann::json FrameBenchReport::toJson() const {
                               {"frame_ms", f.frameMs},
                               {"gpu_ms", f.gpuMs},
                               {"cpu_ms", f.cpuMs()},
+                              {"prepare_ms", f.prepareMs},
                               {"terrain_ms", f.terrainMs()},
                               {"passes", passes},
                               {"triangles", f.triangles},
@@ -280,14 +284,16 @@ std::string FrameBenchReport::csv() const {
     for (const std::string& name : run.passNames)
       if (std::find(passes.begin(), passes.end(), name) == passes.end()) passes.push_back(name);
   std::string out =
-      "mode,frame,time_s,lat_deg,lon_deg,altitude_m,height_m,frame_ms,gpu_ms,cpu_ms,terrain_ms,cpu_heights_ms";
+      "mode,frame,time_s,lat_deg,lon_deg,altitude_m,height_m,frame_ms,gpu_ms,cpu_ms,prepare_ms,terrain_ms,cpu_heights_"
+      "ms";
   for (const std::string& name : passes) out += ",pass_" + name + "_ms";
   out += ",triangles,vertices_evaluated,patch_levels_rebuilt,m_per_vertex_nadir\n";
   for (const ModeRun& run : runs)
     for (const FrameRecord& f : run.frames) {
-      out += fmt::format("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.mode.name, f.index, f.pathTimeS,
-                         f.camera.latitudeDeg, f.camera.longitudeDeg, f.camera.altitudeM, f.heightAboveGroundM,
-                         f.frameMs, f.gpuMs, f.cpuMs(), f.terrainMs(), f.cpuHeightsMs);
+      out +=
+          fmt::format("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", run.mode.name, f.index,
+                      f.pathTimeS, f.camera.latitudeDeg, f.camera.longitudeDeg, f.camera.altitudeM,
+                      f.heightAboveGroundM, f.frameMs, f.gpuMs, f.cpuMs(), f.prepareMs, f.terrainMs(), f.cpuHeightsMs);
       for (const std::string& name : passes) out += fmt::format(",{:.4f}", f.passMs(name));
       out += fmt::format(",{},{},{},{}\n", f.triangles, f.verticesEvaluated, f.patchLevelsRebuilt,
                          f.metresPerVertexAtNadir);
@@ -319,6 +325,7 @@ std::string FrameBenchReport::table() const {
   row("frame (wall clock)", main.frameMs);
   row("GPU (first to last timestamp)", main.gpuMs);
   row("CPU (frame - GPU)", main.cpuMs);
+  row("  of which prepare (cull, uniforms)", main.prepareMs);
   for (size_t p = 0; p < main.passNames.size(); ++p) row("  pass " + main.passNames[p], main.passMs[p]);
   row("terrain time", main.terrainMs);
   out += fmt::format("\nframes per second (median frame): {:.2f}\n", 1000.0 / main.frameMs.median);

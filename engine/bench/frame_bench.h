@@ -91,6 +91,7 @@ struct FrameRecord {
   double heightAboveGroundM = 0.0;
   double frameMs = 0.0;               // wall clock of Renderer::render: CPU work, GPU work, waiting, read-back
   double gpuMs = 0.0;                 // first timestamp of the frame to the last
+  double prepareMs = 0.0;             // the CPU's preparation (RenderResult::prepareMs), part of cpuMs
   std::vector<vk::GpuTiming> passes;  // GPU scopes in recording order
   double cpuHeightsMs = 0.0;          // cpu mode: the threaded CPU evaluation (inside frameMs, outside gpuMs)
   uint64_t triangles = 0;
@@ -109,7 +110,7 @@ struct ModeRun {
   std::vector<FrameRecord> frames;
   std::vector<std::string> passNames;  // every GPU pass seen, in order of first appearance
   // Statistics over the timed frames; a pass that did not run in a frame counts 0 ms there.
-  Summary frameMs, gpuMs, cpuMs, terrainMs, cpuHeightsMs;
+  Summary frameMs, gpuMs, cpuMs, prepareMs, terrainMs, cpuHeightsMs;
   std::vector<Summary> passMs;  // per passNames
   double minMetresPerVertexAtNadir = 0.0;
   double trianglesMedian = 0.0;

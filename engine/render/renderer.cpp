@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -218,6 +219,10 @@ VkRenderingAttachmentInfo clearedAttachment(const vk::Image& image, VkImageLayou
   attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   return attachment;  // clear value zero: black, and reversed-Z depth 0 (infinitely far)
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Between two passes over the frame's targets: the later one loads what the earlier one stored.
@@ -640,18 +645,22 @@ RenderResult Renderer::render(const CameraPose& requested, const SunPose& sun, d
   // The sun is placed from the camera's ground point as rendered (after the eye-height rule,
   // applied once here).
   bool raised = false;
+  const auto start = std::chrono::steady_clock::now();
   const CameraPose camera = clampToGround(requested, &raised);
-  return finishFrame(prepareFrame(onePlanetView(camera, sunDirection(sun, camera), timeS), 0, camera, raised, 0),
-                     readHdr);
+  const Prepared prepared = prepareFrame(onePlanetView(camera, sunDirection(sun, camera), timeS), 0, camera, raised, 0);
+  return finishFrame(prepared, readHdr, millisecondsSince(start));
 }
 
 RenderResult Renderer::renderScene(const SceneView& view, bool readHdr) {
-  return finishFrame(prepareScene(view, 0), readHdr);
+  const auto start = std::chrono::steady_clock::now();
+  const Prepared prepared = prepareScene(view, 0);
+  return finishFrame(prepared, readHdr, millisecondsSince(start));
 }
 
-RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr) {
+RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr, double prepareMs) {
   // One frame at a time (the submission is waited for): slot 0 always.
   RenderResult result;
+  result.prepareMs = prepareMs;
   result.camera = prepared.camera;
   result.cameraRaised = prepared.cameraRaised;
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) { record(cmd, 0); });

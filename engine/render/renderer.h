@@ -59,6 +59,9 @@ struct RenderResult {
   std::optional<ExposureReport> exposure;  // with autoExposure: what the luminance pass measured and applied
   CameraPose camera;                   // as rendered (raised when it was below the ground)
   bool cameraRaised = false;
+  // Wall clock of the frame's CPU preparation (render, renderScene: the terrain's LOD, culling
+  // and uniforms, the sky's and the other passes'), before anything is recorded or submitted.
+  double prepareMs = 0.0;
 };
 
 class LuminancePass;
@@ -179,7 +182,7 @@ class Renderer {
   Prepared prepareFrame(const SceneView& view, size_t primary, const CameraPose& primaryPose, bool raised,
                         uint32_t slot);
   static CameraPose raisedAboveGround(const PlanetDescription& planet, const CameraPose& camera, bool* raised);
-  RenderResult finishFrame(const Prepared& prepared, bool readHdr);
+  RenderResult finishFrame(const Prepared& prepared, bool readHdr, double prepareMs);
   // One ring draw between compose passes: the HDR colour and depth from their compute layouts
   // to attachments and back.
   // The HDR target to GENERAL and the depth to SHADER_READ_ONLY after a draw, for compose passes.
