@@ -526,14 +526,15 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
     }
     section.draw();
     const char* next = k + 1 < sections.size() ? sections[k + 1].name : nullptr;
-    if (timer) {
-      if (section.deferred)
-        timer->next(cmd, "ground shading");
-      else if (next)
-        timer->next(cmd, next);
+    // The section's scope ends (and the next one's begins) inside its pass, or after its shading.
+    const auto endScope = [&](const char* following) {
+      if (!timer) return;
+      if (following)
+        timer->next(cmd, following);
       else
         timer->end(cmd);
-    }
+    };
+    endScope(section.deferred ? "ground shading" : next);
     vkCmdEndRendering(cmd);
     if (section.deferred) {
       // The G-buffer's writes to the compute pass's reads, the HDR target's (the stars') to its
@@ -549,12 +550,7 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
       vk::transitionImage(cmd, hdr, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                           VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-      if (timer) {
-        if (next)
-          timer->next(cmd, next);
-        else
-          timer->end(cmd);
-      }
+      endScope(next);
     }
     if (next) attachmentsBarrier(cmd);
   }

@@ -603,23 +603,25 @@ void TerrainPass::prepareShadingPipelines() {
         shading.ringShadow = ring_.has_value();
         shading.relief = relief;
         buildFillPipeline(shading);
-        if (settings_.deferredShading && !shadePipelines_[shading.key()].get())
-          shadePipelines_[shading.key()] = {context_, createShadePipeline(shading)};
+        if (settings_.deferredShading) buildShadePipeline(shading);
       }
 }
 
 void TerrainPass::buildFillPipeline(const TerrainShading& shading) {
-  if (settings_.deferredShading) {  // the G-buffer draws instead (the compute pass: prepare)
-    vk::Owned<VkPipeline>& fill = gbufferPipelines_[shading.key()];
-    if (!fill.get()) fill = {context_, createGBufferPipeline(shading, false)};
-    vk::Owned<VkPipeline>& dry = gbufferDryPipelines_[shading.key()];
-    if (splitPipeline_.get() && !dry.get()) dry = {context_, createGBufferPipeline(shading, true)};
-    return;
-  }
-  vk::Owned<VkPipeline>& fill = fillPipelines_[shading.key()];
-  if (!fill.get()) fill = {context_, createDrawPipeline(false, shading)};
-  vk::Owned<VkPipeline>& dry = dryPipelines_[shading.key()];
-  if (splitPipeline_.get() && !dry.get()) dry = {context_, createDrawPipeline(false, shading, true)};
+  // Shading deferred, the G-buffer draws stand in for the shading ones (buildShadePipeline).
+  const bool deferred = settings_.deferredShading;
+  const auto create = [&](bool earlyDepth) {
+    return deferred ? createGBufferPipeline(shading, earlyDepth) : createDrawPipeline(false, shading, earlyDepth);
+  };
+  vk::Owned<VkPipeline>& fill = (deferred ? gbufferPipelines_ : fillPipelines_)[shading.key()];
+  if (!fill.get()) fill = {context_, create(false)};
+  vk::Owned<VkPipeline>& dry = (deferred ? gbufferDryPipelines_ : dryPipelines_)[shading.key()];
+  if (splitPipeline_.get() && !dry.get()) dry = {context_, create(true)};
+}
+
+void TerrainPass::buildShadePipeline(const TerrainShading& shading) {
+  vk::Owned<VkPipeline>& shade = shadePipelines_[shading.key()];
+  if (!shade.get()) shade = {context_, createShadePipeline(shading)};
 }
 
 bool TerrainPass::splitsSeaFloor() const { return splitPipeline_.get() && !settings_.wireframe; }
@@ -738,8 +740,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   if (!info.wireframe) {
     frame_.draws = drawsFor(view, info.shading, settings_.shadingPerFrame && !info.lodFrozen);
     for (const TerrainDraw& draw : frame_.draws) buildFillPipeline(draw.shading);
-    vk::Owned<VkPipeline>& shade = shadePipelines_[info.shading.key()];
-    if (shadesDeferred() && !shade.get()) shade = {context_, createShadePipeline(info.shading)};
+    if (shadesDeferred()) buildShadePipeline(info.shading);
   }
 
   // What the heights depend on: unchanged while frozen (unless a toggle changes the patch layout).

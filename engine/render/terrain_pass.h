@@ -360,12 +360,14 @@ class TerrainPass {
   // Whether the planet has clouds over its sea (clouds and air): the sea's shader then has their
   // reflection and shadow, which frames with clouds drawn (TerrainView::clouds) turn on.
   bool cloudsOverSea() const;
+  // The deferred shading's compute pipeline for `shading`, built unless it exists.
+  void buildShadePipeline(const TerrainShading& shading);
   // Whether this frame's fill draws are split by terrain_split.comp (TerrainSettings::splitSeaFloor).
   bool splitsSeaFloor() const;
   // The split's dispatch and its barriers (recordCompute).
   void recordSplit(VkCommandBuffer cmd, vk::GpuTimer* timer);
   // The fill pipeline of `shading` (and its early-depth variant when the sea floor is split), built
-  // unless it exists.
+  // unless it exists; shading deferred, the G-buffer draw's.
   void buildFillPipeline(const TerrainShading& shading);
   // The parts of the ground's shading this view can show (all the planet has when
   // TerrainSettings::shadingPerFrame is off or the LOD is frozen).
