@@ -43,6 +43,10 @@ layout(set = 0, binding = kRenderBindingClouds) uniform samplerCube cloudCover;
 #define CLOUD_LOCAL_TO_PLANET frame.localToPlanet
 #include "cloud_layer.glsl"
 
+// The sky-view table of the body's sky pass (TerrainPass::setSkyView), read where
+// frame.skyView.x > 0.
+layout(set = 0, binding = kRenderBindingSkyView) uniform sampler2D skyViewTable;
+
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inUp;
 layout(location = 2) in vec4 inAttributes;
@@ -108,6 +112,26 @@ float glintFactor(vec3 normal, vec3 toCamera, vec3 sun, float m2) {
   float distribution = exp(-tan2 / m2) / (kAtmospherePi * m2 * cosH2 * cosH2);
   float shadowing = 1.0f / (1.0f + smithLambdaBeckmann(cosV, m2) + smithLambdaBeckmann(cosL, m2));
   return fresnelWater(dot(halfway, sun)) * distribution * shadowing / (4.0f * cosV);
+}
+
+// The clear sky the sea mirrors along `reflected` (unit, local frame) at a point whose vertical is
+// `up`: the sky-view table, the sky around the camera by view zenith angle and azimuth from the
+// sun, read at the reflected ray's zenith angle and azimuth there. The table is the sky seen from
+// the camera's altitude, whose horizon (the ground sphere's edge) lies below 90°: the sea's zenith
+// angles 0 .. 90° are stretched onto the table's 0 .. horizon, so that a ray grazing the sea reads
+// the haze of a ray grazing the ground, not the sky above the camera's horizontal. A ray a wave
+// sends below the horizon reads the sky just above it.
+vec3 skyViewReflection(vec3 reflected, vec3 up, vec3 sun) {
+  vec2 range = skyViewZenithRange(frame.atmosphere, max(frame.camera.x, 0.0f), frame.skyView.y);
+  float cosZenith = clamp(dot(reflected, up), 0.0f, 1.0f);
+  float theta = mix(range.x, range.y, acos(cosZenith) * (2.0f / kAtmospherePi));
+  float v = min(unitToTexel(skyViewV(theta, range), float(kSkyViewHeight)),
+                (0.5f * float(kSkyViewHeight) - 0.5f) / float(kSkyViewHeight));
+  vec3 viewFlat = reflected - cosZenith * up, sunFlat = sun - dot(sun, up) * up;
+  float lengths = length(viewFlat) * length(sunFlat);
+  float cosPhi = lengths > 1e-7f ? clamp(dot(viewFlat, sunFlat) / lengths, -1.0f, 1.0f) : 1.0f;
+  float u = unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth));
+  return textureLod(skyViewTable, vec2(u, v), 0.0f).rgb;
 }
 
 // The sky the sea mirrors along `reflected` where the frame draws clouds: the layer's column
@@ -209,9 +233,13 @@ void main() {
   vec3 sunLight = (vec3(eclipse) + refracted) * sunIrradianceAt(frame.planet.x, up);
   if (kSpecRingShadow) sunLight *= surfaceRingShadow(inToCamera);  // the rings shadow the sea as the ground
   vec3 skyLight = eclipse * skyIrradianceAt(muS);
-  // The sky seen in the reflection: its irradiance spread over the hemisphere, brighter low.
+  // The sky seen in the reflection: near the ground the sky-view table along the reflected ray;
+  // high above it (where the table is the sky seen from up there) the sky's irradiance spread over
+  // the hemisphere, brighter low.
   vec3 reflected = reflect(-toCamera, normal);
   vec3 skyRadiance = skyLight / kAtmospherePi * mix(1.6f, 0.7f, clamp(dot(reflected, up), 0.0f, 1.0f));
+  if (frame.skyView.x > 0.0f)
+    skyRadiance = mix(skyRadiance, eclipse * skyViewReflection(reflected, up, sun), frame.skyView.x);
   // The clouds: their shadow takes the sun's glint as it takes the sun (the compose's factor, a
   // quarter of the light left under a thick cloud, would leave a glint under an overcast), and
   // the light from the water body as the ground's; the sky the sea mirrors has them in it.

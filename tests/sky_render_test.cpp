@@ -308,8 +308,10 @@ TEST_F(SkyRender, TheSeaUnderAnOvercastMirrorsTheCloudBase) {
   EXPECT_GT(blue.b, blue.r + 30.0) << blue.r << " " << blue.g << " " << blue.b;
   const double clearSky = hdrRowsLuminance(clear.hdr, 160, 30, 37);
   const double clearSea = hdrRowsLuminance(clear.hdr, 160, 44, 50);
-  // The waves' facets (0.17 of the sky's light just below the horizon; a mirror's Fresnel, 0.28).
-  EXPECT_LT(clearSea, 0.22 * clearSky) << "sea " << clearSea << " sky " << clearSky;
+  // The clear sky mirrored 2-6 degrees below the horizon: the rough sea's Fresnel there (0.3-0.45;
+  // a mirror's would be 0.55-0.7) of the sky as bright as 2-6 degrees above it (0.41 measured).
+  EXPECT_GT(clearSea, 0.3 * clearSky) << "sea " << clearSea << " sky " << clearSky;
+  EXPECT_LT(clearSea, 0.55 * clearSky) << "sea " << clearSea << " sky " << clearSky;
 
   // Toward a low sun: a glint under the clear sky, none under the overcast.
   const CameraPose towardSun{20, -30, 10, 135, -8};
@@ -318,6 +320,56 @@ TEST_F(SkyRender, TheSeaUnderAnOvercastMirrorsTheCloudBase) {
   renderer.setSkySettings(settings.sky);
   const Spread under = luminanceSpread(renderer.render(towardSun, low).image, 0, 50, 160, 90, 120.0);
   EXPECT_EQ(under.brightPixels, 0) << "median " << under.median;
+}
+
+// At sunset the sea mirrors the sky around it (water.frag, skyViewReflection): toward the sun,
+// away from its glint, the sea just below the horizon takes the orange of the glow above it and
+// a good part of its light. Before the sea read the sky-view table it mirrored an estimate from
+// the sky's irradiance, which a sun 3 degrees up leaves dim and grey: that sea was near black
+// (0.1 of the sky's luminance, red/blue 1.1 on the display). High above the ground, where the
+// camera's table is not the sky the sea sees, the estimate takes over.
+TEST_F(SkyRender, TheSeaMirrorsTheSunsetGlow) {
+  RenderSettings settings = skySettings();
+  settings.width = 160;
+  settings.height = 90;
+  const PlanetDescription earth = clearEarth();
+  ASSERT_LT(terrainHeightM(earth, directionFromLatLon(20, -30)), -1000.0);
+  Renderer renderer(context(), earth, settings);
+  // From 10 m toward the sun 3 degrees up, 3 degrees below the horizon: the horizon at row ~40 of
+  // 90, the glint in the middle columns (~64-96); the sky 2-7 degrees up and the sea 2-6 down at
+  // the sides.
+  const RenderResult sunset = renderer.render(CameraPose{20, -30, 10, 90, -3}, SunPose{90, 3}, 0.0, true);
+  double sky = 0.0, sea = 0.0;
+  Rgb seaColor;
+  for (const uint32_t x0 : {0u, 120u}) {
+    for (uint32_t y = 30; y < 37; ++y)
+      for (uint32_t x = x0; x < x0 + 40; ++x) {
+        const glm::vec4& c = sunset.hdr[size_t(y) * 160 + x];
+        sky += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+      }
+    for (uint32_t y = 44; y < 50; ++y)
+      for (uint32_t x = x0; x < x0 + 40; ++x) {
+        const glm::vec4& c = sunset.hdr[size_t(y) * 160 + x];
+        sea += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+      }
+    const Rgb side = meanColor(sunset.image, x0, 44, x0 + 40, 50);
+    seaColor = {seaColor.r + 0.5 * side.r, seaColor.g + 0.5 * side.g, seaColor.b + 0.5 * side.b};
+  }
+  sky /= 7.0 * 80.0;
+  sea /= 6.0 * 80.0;
+  EXPECT_GT(sea, 0.3 * sky) << "sea " << sea << " sky " << sky;
+  EXPECT_LT(sea, 0.8 * sky) << "sea " << sea << " sky " << sky;
+  EXPECT_GT(seaColor.r, 2.0 * seaColor.b) << seaColor.r << " " << seaColor.g << " " << seaColor.b;
+  EXPECT_GT(seaColor.r, 60.0) << seaColor.r << " " << seaColor.g << " " << seaColor.b;
+
+  // The table's weight: whole near the ground, none from 30 km up.
+  const TerrainPass& terrain = renderer.terrain();
+  EXPECT_EQ(terrain.skyViewWeight(0.0), 1.0);
+  EXPECT_EQ(terrain.skyViewWeight(TerrainPass::kSkyViewFadeStartM), 1.0);
+  EXPECT_GT(terrain.skyViewWeight(15'000.0), 0.2);
+  EXPECT_LT(terrain.skyViewWeight(15'000.0), 0.9);
+  EXPECT_EQ(terrain.skyViewWeight(TerrainPass::kSkyViewFadeEndM), 0.0);
+  EXPECT_EQ(terrain.skyViewWeight(4e5), 0.0);
 }
 
 // The airless Moon: a black sky over a sunlit ground, even by day.

@@ -120,6 +120,8 @@ void Renderer::createBodies(const std::vector<PlanetDescription>& planets,
     body.terrain =
         std::make_unique<TerrainPass>(context_, body.planet, terrain, kHdrFormat, kDepthFormat, *body.skyTables);
     body.sky = std::make_unique<SkyPass>(context_, body.planet, *body.skyTables, settings_.sky, terrain.eclipses);
+    // The sea mirrors the sky around it from the sky pass's sky-view table (recorded before the draws).
+    body.terrain->setSkyView(body.sky->skyViewTable(), body.skyTables->sampler());
     if (rings[i]) {
       body.rings = std::make_unique<RingPass>(context_, *rings[i], kHdrFormat, kDepthFormat, body.skyTables.get());
       const gpu::RingParams shadow = ringGpuParams(*rings[i], body.planet.radiusM, kSunAngularRadiusRad);
@@ -446,6 +448,8 @@ void Renderer::record(VkCommandBuffer cmd, uint32_t slot) {
   for (Body& body : bodies_) body.skyTables->recordBuild(cmd, timer);
   if (stars_) stars_->recordGenerate(cmd, timer);
   for (Body& body : bodies_) body.terrain->recordCompute(cmd, timer);
+  // The sky-view tables before the draws: the sea mirrors them.
+  for (Body& body : bodies_) body.sky->recordSkyView(cmd, timer);
   // Earlier contents are discarded: the frame clears the HDR target and the depth. The source
   // scope covers every earlier command on the queue (a previous frame still reading them).
   vk::Image& hdr = *hdr_;

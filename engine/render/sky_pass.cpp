@@ -224,9 +224,11 @@ void SkyPass::prepareAllPipelines() {
 
 void SkyPass::makePipelines(bool clouds) {
   const uint32_t* constants = specialization_[clouds ? 1 : 0];
+  // The sky-view table in every mode: the sea mirrors it (TerrainPass::setSkyView).
+  if (!skyViewBuild_.get())
+    skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
   if (settings_.mode == SkyMode::Tables) {
-    if (!skyViewBuild_.get()) {
-      skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
+    if (!aerialBuild_.get()) {
       // Specialized on the eclipses (constant 0, as the compose's).
       aerialBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
                                                                     tableLayout_.get(), {specialization_[0], 1})};
@@ -393,16 +395,40 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
       built->groundSphereM != inputs.groundSphereM ||
       std::abs(inputs.altitudeM - built->altitudeM) > skyViewAltitudeToleranceM(planet_.radiusM, built->altitudeM) ||
       std::abs(double(inputs.sunCosZenith) - double(built->sunCosZenith)) > kSkyViewSunTolerance;
-  if (settings_.mode == SkyMode::Tables && buildSkyView_) skyViewBuiltFor_ = inputs;
+  if (buildSkyView_) skyViewBuiltFor_ = inputs;
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
+}
+
+void SkyPass::recordSkyView(VkCommandBuffer cmd, vk::GpuTimer* timer) {
+  const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  // Its readers: the sea's fragments and the compose.
+  const VkPipelineStageFlags2 readers = compute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  if (!buildSkyView_) return;  // the last table built still holds
+  if (timer) timer->begin(cmd, "sky");
+  if (!skyViewInitialised_) {
+    // The table starts undefined and stays in GENERAL: written by the build, sampled after.
+    vk::transitionImage(cmd, *skyView_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    skyViewInitialised_ = true;
+  } else {
+    // The previous frame's readers (earlier on the queue) have read it before it is rewritten.
+    vk::memoryBarrier(cmd, readers, 0, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tableLayout_.get(), 0, 1, &tableSets_[slot_], 0,
+                          nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
+  const uint32_t group = gpu::kSkyWorkgroupSize;
+  vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
+  vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, readers, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  if (timer) timer->end(cmd);
 }
 
 void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const uint32_t group = gpu::kSkyWorkgroupSize;
   const bool tables = settings_.mode == SkyMode::Tables;
   const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  if (timer) timer->begin(cmd, tables ? "sky" : "compose");
+  if (timer) timer->begin(cmd, tables ? "aerial" : "compose");
   if (!cloudImagesInitialised_) {
     // New images start undefined and stay in GENERAL, in every mode: the compose's descriptor set
     // names them (a compose without clouds still binds them, its reads specialized away).
@@ -413,22 +439,17 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   }
   if (tables) {
     if (!tablesInitialised_) {
-      // The tables start undefined and stay in GENERAL: written by the builds, sampled after.
-      for (vk::Owned<vk::Image>* image : {&skyView_, &aerialLight_, &aerialTransmittance_})
+      // The volume starts undefined and stays in GENERAL: written by the build, sampled after.
+      for (vk::Owned<vk::Image>* image : {&aerialLight_, &aerialTransmittance_})
         vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       tablesInitialised_ = true;
     } else {
-      // The previous frame's compose (earlier on the queue) has read the tables before they are rewritten.
+      // The previous frame's compose (earlier on the queue) has read the volume before it is rewritten.
       vk::memoryBarrier(cmd, compute, 0, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tableLayout_.get(), 0, 1, &tableSets_[slot_], 0,
                             nullptr);
-    if (buildSkyView_) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, skyViewBuild_.get());
-      vkCmdDispatch(cmd, (gpu::kSkyViewWidth + group - 1) / group, (gpu::kSkyViewHeight + group - 1) / group, 1);
-    }
-    if (timer) timer->next(cmd, "aerial");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
     // The cloud pass and the compose sample what the builds wrote.

@@ -126,9 +126,10 @@ struct SkyView {
 
 class SkyPass {
  public:
-  // Timing scopes a frame records at most: "sky" (the sky-view table), "aerial" (the
-  // aerial-perspective volume), "clouds" (the cloud pass, half resolution) and "compose" (the
-  // tiles' classes, then the compose; the reference mode records only "compose", its march).
+  // Timing scopes a frame records at most: "sky" (the sky-view table, recordSkyView, in a frame
+  // that builds it), "aerial" (the aerial-perspective volume), "clouds" (the cloud pass, half
+  // resolution) and "compose" (the tiles' classes, then the compose; the reference mode records
+  // only "sky" and "compose", its march).
   static constexpr uint32_t kTimingScopes = 4;
 
   // `tables` (transmittance, cloud cover) must outlive the pass.
@@ -143,9 +144,16 @@ class SkyPass {
   // vk::kFramesInFlight): call it while no frame recorded for that slot is executing; a frame of
   // the other slot may be.
   void prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot = 0);
-  // The tables (tables mode) and the compose, reading the last prepared frame's uniforms: hdr in
-  // GENERAL and depth in SHADER_READ_ONLY_OPTIMAL, both after the draws.
+  // The sky-view table of the last prepared frame, in every mode, unless the last one built
+  // still holds (skyViewBuilt): before the draws, as the sea mirrors it (TerrainPass::setSkyView);
+  // the compose of tables mode reads it too. Leaves it visible to fragment and compute shaders.
+  void recordSkyView(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  // The aerial-perspective volume (tables mode) and the compose, reading the last prepared
+  // frame's uniforms: hdr in GENERAL and depth in SHADER_READ_ONLY_OPTIMAL, both after the
+  // draws; after recordSkyView.
   void recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer);
+  // The sky-view table (kSkyViewWidth × kSkyViewHeight, RGBA16F, GENERAL once a frame has built it).
+  const vk::Image& skyViewTable() const { return *skyView_; }
 
   const SkySettings& settings() const { return settings_; }
   // Takes effect at the next prepare() (every field is a per-frame uniform or a pipeline already
@@ -233,7 +241,8 @@ class SkyPass {
   vk::Owned<VkPipeline> skyViewBuild_;
   vk::Owned<VkPipeline> aerialBuild_;
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
-  bool tablesInitialised_ = false;                       // the table images left UNDEFINED for GENERAL
+  bool tablesInitialised_ = false;                       // the aerial volume left UNDEFINED for GENERAL
+  bool skyViewInitialised_ = false;                      // the sky-view table left UNDEFINED for GENERAL
   // What the sky-view table was last built for, and whether the last prepared frame builds it.
   struct SkyViewInputs {
     gpu::AtmosphereParams atmosphere{};

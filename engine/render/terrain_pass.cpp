@@ -71,11 +71,9 @@ constexpr VkDescriptorType kBindingTypes[gpu::kRenderBindingCount] = {
     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,    // frame texels (the frame's uniforms again)
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the cloud cover (the sea's reflection and shadow)
     // The deferred shading (written by setShadingTargets): the G-buffer's four images, the HDR target.
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the sky-view table (setSkyView), which the sea mirrors
 };
 static_assert(gpu::kRenderBindingLatitudeFootprint - gpu::kRenderBindingNormalHeight + 1 ==
               TerrainPass::kGBufferTargets);
@@ -346,6 +344,9 @@ TerrainPass::TerrainPass(vk::Context& context, const PlanetDescription& planet, 
     // Built with the sky tables, before any frame's terrain (Renderer::record).
     vk::writeImageDescriptor(context, set, gpu::kRenderBindingClouds, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                              sky.clouds().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.clouds().sampler());
+    // A valid image until setSkyView names the table; the sea reads it only after (FrameUniforms::skyView).
+    vk::writeImageDescriptor(context, set, gpu::kRenderBindingSkyView, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             sky.transmittanceView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sky.sampler());
   }
 
   layout_ = {context, vk::createPipelineLayout(context, setLayout_.get(), sizeof(gpu::TerrainComputePush),
@@ -514,6 +515,19 @@ void TerrainPass::setShadingTargets(std::span<const vk::Image* const> gbuffer, c
                              color.view, VK_IMAGE_LAYOUT_GENERAL);
   }
   shadingTargets_ = true;
+}
+
+void TerrainPass::setSkyView(const vk::Image& table, VkSampler sampler) {
+  for (VkDescriptorSet set : sets_)
+    vk::writeImageDescriptor(context_, set, gpu::kRenderBindingSkyView, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             table.view, VK_IMAGE_LAYOUT_GENERAL, sampler);
+  skyViewSet_ = true;
+}
+
+double TerrainPass::skyViewWeight(double altitudeM) const {
+  if (!skyViewSet_ || !planet_.atmosphere.enabled) return 0.0;
+  const double x = std::clamp((altitudeM - kSkyViewFadeStartM) / (kSkyViewFadeEndM - kSkyViewFadeStartM), 0.0, 1.0);
+  return 1.0 - x * x * (3.0 - 2.0 * x);
 }
 
 void TerrainPass::recordShade(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
@@ -821,6 +835,9 @@ void TerrainPass::writeUniforms(const TerrainView& view, const glm::dmat4& viewP
     u.cloudShape = glm::vec4(layer.shape.x, layer.shape.y, 1.0f, 0.0f);
     u.cloudMotion = layer.motion;
   }
+  // The sky the sea mirrors: the sky-view table near the ground (its ground sphere as the sky
+  // pass's: the radius sphere under a sea, and only a planet with a sea draws water).
+  u.skyView = glm::vec4(float(skyViewWeight(cameraZ)), 0.0f, 0.0f, 0.0f);
   if (ring_) {
     u.cameraPlanet = glm::vec4(glm::vec3(view.camera.position), 1.0f);
     u.ring = *ring_;

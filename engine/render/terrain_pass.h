@@ -263,6 +263,18 @@ class TerrainPass {
   // shades into. Call before the first frame and after the targets change, while no frame that
   // uses the old ones is executing.
   void setShadingTargets(std::span<const vk::Image* const> gbuffer, const vk::Image& color);
+  // Points the sea at the body's sky-view table (SkyPass::skyViewTable, in GENERAL, built before
+  // the draws each frame that reads it): the sea then mirrors the sky around it, its glow toward
+  // a low sun included, where before it mirrored an estimate from the sky's irradiance (still
+  // used high above the ground, where the camera's table is not the sky the sea sees). Call
+  // while no frame is executing.
+  void setSkyView(const vk::Image& table, VkSampler sampler);
+  // The weight of the sky-view table in the sea's reflection at a camera altitude (m above the
+  // radius): 1 up to kSkyViewFadeStartM, 0 from kSkyViewFadeEndM (smoothstep), 0 without a table
+  // or air.
+  static constexpr double kSkyViewFadeStartM = 8'000.0;
+  static constexpr double kSkyViewFadeEndM = 30'000.0;
+  double skyViewWeight(double altitudeM) const;
   // The deferred shading of the last prepared frame, after its draw (recordDraw): every pixel of
   // the width × height targets that holds ground. The G-buffer and the HDR target in the
   // GENERAL layout, the draw's writes visible to compute shaders.
@@ -464,6 +476,7 @@ class TerrainPass {
   std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> gbufferDryPipelines_;
   std::array<vk::Owned<VkPipeline>, TerrainShading::kKeys> shadePipelines_;
   bool shadingTargets_ = false;       // setShadingTargets was called
+  bool skyViewSet_ = false;           // setSkyView was called
   std::unique_ptr<WaterPass> water_;  // planets with an ocean, except HeightSource::VertexShader
 
   uint32_t slot_ = 0;  // of the last prepare()

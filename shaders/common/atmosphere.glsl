@@ -277,6 +277,46 @@ void multipleScatteringTexel(IN(AtmosphereParams) a, real h, real muS, OUT(vec3)
   psi = secondOrder * cell * series;
 }
 
+// The sky-view table (Hillaire 2020, §5.3), rebuilt for each frame's viewpoint and sun: the sky
+// radiance around the viewpoint by view azimuth from the sun (u: 0 toward the sun .. π away; the
+// sky is symmetric about the sun's vertical plane, so half the circle is enough) and view zenith
+// angle θ (v). The rows are spread non-linearly toward the horizon of the ground sphere θh,
+// where the sky changes fastest: above it v = (1 − sqrt((θh − θ) / (θh − θmin))) / 2, below it
+// v = (1 + sqrt((θ − θh) / (π − θh))) / 2. θmin is the zenith inside the atmosphere; above its top
+// it is the direction that grazes the top, so that from orbit the rows hold only the rays that
+// cross the shell and gather at the limb.
+vec2 skyViewZenithRange(IN(AtmosphereParams) a, real h, real hGround) {
+  real R = real(a.radii.x);
+  real top = real(a.radii.y);
+  real hg = min(hGround, h);
+  // The angles as atan(sin, cos) of the tangent rays (both scaled by r), not acos of their
+  // cosines: from far away the whole range is ~10⁻³ rad next to θ ≈ π, where acos of a float
+  // (lavapipe's approximation especially) may be off by ~10⁻⁵ rad, kilometres of tangent
+  // altitude at the limb.
+  real horizonCos = -sqrt(max((h - hg) * (real(2.0f) * R + h + hg), real(0.0f)));
+  real start = real(0.0f);
+  if (h > top) start = atan(R + top, -sqrt((h - top) * (real(2.0f) * R + h + top)));
+  return vec2(start, atan(R + hg, horizonCos));
+}
+
+real skyViewV(real theta, vec2 range) {
+  if (theta <= range.y) {
+    real x = clamp((range.y - theta) / max(range.y - range.x, real(1.0e-6f)), real(0.0f), real(1.0f));
+    return real(0.5f) * (real(1.0f) - sqrt(x));
+  }
+  real x = clamp((theta - range.y) / max(kAtmospherePi - range.y, real(1.0e-6f)), real(0.0f), real(1.0f));
+  return real(0.5f) * (real(1.0f) + sqrt(x));
+}
+
+real skyViewTheta(real v, vec2 range) {
+  if (v < real(0.5f)) {
+    real s = real(1.0f) - real(2.0f) * v;
+    return range.y - s * s * (range.y - range.x);
+  }
+  real s = real(2.0f) * v - real(1.0f);
+  return range.y + s * s * (kAtmospherePi - range.y);
+}
+
 #ifdef MULTIPLE_SCATTERING
 // Light scattered two or more times toward the start of a ray segment, per the params' sun
 // irradiance, over the same samples as singleScattering (altitude h, zenith cosine mu, sun zenith
@@ -384,46 +424,6 @@ void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real h
   real muS0 = clamp((r * muS + stretch.x * nu) / (R + h0), real(-1.0f), real(1.0f));
   scatteringAlong(a, h0, mu0, muS0, nu, stretch.y - stretch.x, steps, h < real(a.radii.y), single, total,
                   transmittance);
-}
-
-// The sky-view table (Hillaire 2020, §5.3), rebuilt for each frame's viewpoint and sun: the sky
-// radiance around the viewpoint by view azimuth from the sun (u: 0 toward the sun .. π away; the
-// sky is symmetric about the sun's vertical plane, so half the circle is enough) and view zenith
-// angle θ (v). The rows are spread non-linearly toward the horizon of the ground sphere θh,
-// where the sky changes fastest: above it v = (1 − sqrt((θh − θ) / (θh − θmin))) / 2, below it
-// v = (1 + sqrt((θ − θh) / (π − θh))) / 2. θmin is the zenith inside the atmosphere; above its top
-// it is the direction that grazes the top, so that from orbit the rows hold only the rays that
-// cross the shell and gather at the limb.
-vec2 skyViewZenithRange(IN(AtmosphereParams) a, real h, real hGround) {
-  real R = real(a.radii.x);
-  real top = real(a.radii.y);
-  real hg = min(hGround, h);
-  // The angles as atan(sin, cos) of the tangent rays (both scaled by r), not acos of their
-  // cosines: from far away the whole range is ~10⁻³ rad next to θ ≈ π, where acos of a float
-  // (lavapipe's approximation especially) may be off by ~10⁻⁵ rad, kilometres of tangent
-  // altitude at the limb.
-  real horizonCos = -sqrt(max((h - hg) * (real(2.0f) * R + h + hg), real(0.0f)));
-  real start = real(0.0f);
-  if (h > top) start = atan(R + top, -sqrt((h - top) * (real(2.0f) * R + h + top)));
-  return vec2(start, atan(R + hg, horizonCos));
-}
-
-real skyViewV(real theta, vec2 range) {
-  if (theta <= range.y) {
-    real x = clamp((range.y - theta) / max(range.y - range.x, real(1.0e-6f)), real(0.0f), real(1.0f));
-    return real(0.5f) * (real(1.0f) - sqrt(x));
-  }
-  real x = clamp((theta - range.y) / max(kAtmospherePi - range.y, real(1.0e-6f)), real(0.0f), real(1.0f));
-  return real(0.5f) * (real(1.0f) + sqrt(x));
-}
-
-real skyViewTheta(real v, vec2 range) {
-  if (v < real(0.5f)) {
-    real s = real(1.0f) - real(2.0f) * v;
-    return range.y - s * s * (range.y - range.x);
-  }
-  real s = real(2.0f) * v - real(1.0f);
-  return range.y + s * s * (kAtmospherePi - range.y);
 }
 
 // The table's texel (u, v) in [0, 1] (texel centres at the ends of each range) for a viewpoint at

@@ -46,7 +46,10 @@ GPU_CONST uint kRenderBindingToCameraPixel = 17u;
 GPU_CONST uint kRenderBindingUpJitter = 18u;
 GPU_CONST uint kRenderBindingLatitudeFootprint = 19u;
 GPU_CONST uint kRenderBindingShadedColor = 20u;
-GPU_CONST uint kRenderBindingCount = 21u;
+// sampler2D: the body's sky-view table (SkyPass, built before the draws), which the sea mirrors;
+// until TerrainPass::setSkyView names it, the transmittance table stands in and the sea does not read it.
+GPU_CONST uint kRenderBindingSkyView = 21u;
+GPU_CONST uint kRenderBindingCount = 22u;
 GPU_CONST uint kTerrainShadeWorkgroupSize = 8u;  // its workgroups: 8 × 8 pixels
 GPU_CONST uint kSkyIrradianceSamplesGpu = 16u;
 // terrain.frag's specialization constants (TerrainPass::createDrawPipeline; terrain_shade.comp
@@ -132,8 +135,13 @@ struct FrameUniforms {
   vec4 clouds;
   vec4 cloudShape;
   vec4 cloudMotion;
+  // The sky the sea mirrors (water.frag, skyViewReflection): x: the weight of the sky-view table
+  // (kRenderBindingSkyView) against the sky irradiance's estimate, 1 near the ground fading to 0
+  // high above it (the table is the sky seen from the camera's altitude); y: the table's ground
+  // sphere (m above the radius, SkyUniforms::surface.z); zw unused.
+  vec4 skyView;
 };
-GPU_ASSERT_SIZE(FrameUniforms, 2128 + 272 + 48 + 48)
+GPU_ASSERT_SIZE(FrameUniforms, 2128 + 272 + 48 + 48 + 16)
 
 // The texel (vec4) where each array of FrameUniforms that the shaders index with a variable
 // starts, for reading it through kRenderBindingFrameTexels (why: terrain_common.glsl,
