@@ -56,6 +56,8 @@ struct ClipmapCull {
   std::vector<uint32_t> bandFirstIndex;
   uint32_t cellsKept = 0;
   uint32_t cellsTotal = 0;
+  // Which vertices of the rings the kept triangles use: the cull's scratch, kept for its capacity.
+  std::vector<uint8_t> vertexMarks;
   uint32_t vertexCount() const;
 };
 
@@ -65,5 +67,8 @@ struct ClipmapCull {
 // planet::Error for a bad ring range or chunkSize 0.
 ClipmapCull cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t lastRing, const ClipmapCullView& view,
                         uint32_t chunkSize, bool cull = true);
+// The same into `out`, whose vectors keep their capacity (the renderer's every frame).
+void cullClipmap(const ClipmapMesh& mesh, uint32_t firstRing, uint32_t lastRing, const ClipmapCullView& view,
+                 uint32_t chunkSize, bool cull, ClipmapCull& out);
 
 }  // namespace planet

@@ -709,7 +709,12 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   info.nearPlaneM = std::min(std::clamp(0.25 * info.heightAboveGroundM, 0.01, 5.0e4), std::max(view.maxNearPlaneM, 0.01));
 
   info.lodFrozen = freezeLod_ && lod_;
-  if (!info.lodFrozen) lod_ = chooseLod(view, info.viewOrientation, info.heightAboveGroundM);
+  if (!info.lodFrozen) {
+    // The cull's vectors go to the new LOD for their capacity (cullClipmap refills them).
+    ClipmapCull culled = lod_ ? std::move(lod_->cull) : ClipmapCull{};
+    lod_ = chooseLod(view, info.viewOrientation, info.heightAboveGroundM);
+    lod_->cull = std::move(culled);
+  }
   writeTables();
   Lod& lod = *lod_;
   const bool patches = settings_.patches && !settings_.wireframe;
@@ -749,7 +754,7 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   frame_.patchLevelsDeferred = patchPlan_.deferred;
   writeUniforms(view, projection * viewM, cameraZ);
   // A frozen mesh keeps the cells its own frame kept, so that it can be looked at from elsewhere.
-  if (!info.lodFrozen) lod.cull = cullFor(projection * viewM, cameraZ, settings_.frustumCulling);
+  if (!info.lodFrozen) cullFor(projection * viewM, cameraZ, settings_.frustumCulling, lod.cull);
   const uint64_t vertices = writeCulledMesh(lod.cull);
   if (!info.wireframe) {
     frame_.draws = drawsFor(view, info.shading, settings_.shadingPerFrame && !info.lodFrozen);
@@ -778,15 +783,14 @@ const TerrainFrameInfo& TerrainPass::prepare(const TerrainView& view, uint32_t s
   return frame_;
 }
 
-ClipmapCull TerrainPass::cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull) const {
+void TerrainPass::cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull, ClipmapCull& out) const {
   ClipmapCullView view;
   view.viewProjection = viewProjection;
   view.radiusM = planet_.radiusM;
   view.cameraZ = cameraZ;
   view.minHeightM = lowestSurfaceM_;
   view.maxHeightM = maxTerrainHeightM_;
-  return cullClipmap(mesh_, frame_.rings.firstRing, frame_.rings.lastRing, view, gpu::kTerrainComputeWorkgroupSize,
-                     cull);
+  cullClipmap(mesh_, frame_.rings.firstRing, frame_.rings.lastRing, view, gpu::kTerrainComputeWorkgroupSize, cull, out);
 }
 
 uint64_t TerrainPass::writeCulledMesh(const ClipmapCull& culled) {

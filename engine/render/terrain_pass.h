@@ -393,7 +393,7 @@ class TerrainPass {
   // constants) with `layout`'s pipeline already bound.
   void bindDrawState(VkCommandBuffer cmd) const;
   // Culls the mesh for the view (every cell kept when `cull` is false).
-  ClipmapCull cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull) const;
+  void cullFor(const glm::dmat4& viewProjection, double cameraZ, bool cull, ClipmapCull& out) const;
   // Writes a culled mesh's triangle list and vertex chunks into the slot's buffers; returns a
   // hash of the chunks.
   uint64_t writeCulledMesh(const ClipmapCull& culled);
