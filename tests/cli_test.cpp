@@ -238,6 +238,10 @@ TEST(Cli, BadFlagsAndLinesGiveOneLineErrorsNamingTheValue) {
       {"bench --flight-fps -60", "", "--flight-fps must be 0 or in 1..1000, got -60"},
       {"bench --flight-fps nan", "", "--flight-fps must be 0 or in 1..1000, got nan"},
       {"bench --flight-fps 5000", "", "--flight-fps must be 0 or in 1..1000, got 5000"},
+      {"bench --in-flight 3", "", "--in-flight must be 1 or 2, got 3"},
+      {"bench --in-flight 0", "", "--in-flight must be 1 or 2, got 0"},
+      {"bench --in-flight 2 --flight-fps 0", "",
+       "--in-flight 2 times each frame behind a real-time one: it needs --flight-fps above 0"},
       {"bench --sun 0,95", "", "sun elevation 95 is outside [-90, 90] degrees"},
       {"bench --sun nan,nan", "", "'nan' is not a finite number"},
       {"bench --preset nosuch", "", "unknown planet preset 'nosuch'"},
@@ -776,6 +780,34 @@ TEST(Cli, BenchReportsEveryFieldWithConsistentTimesAndCompareRatios) {
   EXPECT_EQ(lineCount(table), 1u + 4u * 3u);
   EXPECT_EQ(table.substr(0, table.find(',')), "mode");
   EXPECT_NE(table.find("pass_heights_ms"), std::string::npos);
+}
+
+// With two frames in flight, as the viewer draws, each timed frame is prepared while the frame
+// before it executes and is timed from that frame's end to its own on the GPU's clock: the
+// interval holds the frame's GPU span (lavapipe runs the queue's frames one after the other;
+// a GPU may start a frame's first commands before the one before has drained, so a little less).
+TEST(Cli, BenchWithTwoFramesInFlightTimesEachFrameBehindTheOneBefore) {
+  const std::filesystem::path json = tempDir() / "in_flight.json";
+  CommandResult run = planet("bench --size 64x36 --frames 3 --warmup 0 --in-flight 2 --path " + shortPath().string() +
+                             " --json " + json.string());
+  if (noDevice(run)) GTEST_SKIP() << "no Vulkan device on this machine";
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("2 frames in flight, as the viewer draws"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("frame (GPU clock, end to end)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("GPU waiting (frame - GPU)"), std::string::npos) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(readFile(json));
+  EXPECT_EQ(j["frames_in_flight"].get<int>(), 2);
+  ASSERT_EQ(j["per_frame"].size(), 3u);
+  for (const auto& f : j["per_frame"]) {
+    double sum = 0.0;
+    for (const auto& [name, ms] : f["passes"].items()) sum += ms.get<double>();
+    EXPECT_GT(sum, 0.0) << f.dump();
+    EXPECT_LE(sum, f["gpu_ms"].get<double>() + 1e-6) << f.dump();
+    EXPECT_GE(f["frame_ms"].get<double>(), 0.9 * f["gpu_ms"].get<double>()) << f.dump();
+    EXPECT_LT(f["frame_ms"].get<double>(), 60'000.0) << f.dump();  // two frames' clocks, not an epoch
+    EXPECT_GT(f["prepare_ms"].get<double>(), 0.0) << f.dump();
+    EXPECT_GT(f["triangles"].get<int64_t>(), 0);
+  }
 }
 
 // The lead-in frame makes a timed frame do what a frame of a real-time flight does: over a

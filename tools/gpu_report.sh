@@ -11,7 +11,11 @@
 #   4. planet bench --size 1920x1080 --terrain-shading deferred
 #                                          the same path with the ground shaded in a compute pass
 #                                          over a G-buffer (against 3's forward frames)
-#   5. planet render of three views       OUT_DIR/orbit.png, land_1500m.png and ground_sunset.png
+#   5. planet bench --size 1920x1080 --in-flight 2 (forward and deferred)
+#                                          the frames as the viewer draws them, two in flight: each
+#                                          prepared while the one before executes, timed from that
+#                                          one's end to its own on the GPU's clock
+#   6. planet render of three views       OUT_DIR/orbit.png, land_1500m.png and ground_sunset.png
 #                                          (960x540), to hold against lavapipe's pictures
 # and writes OUT_DIR/gpu_report.json (the reports whole, the renders' exit codes, the device and
 # the commit) and OUT_DIR/gpu_report.txt (a summary naming the device). A validation failure or a
@@ -66,6 +70,11 @@ echo "gpu_report: planet bench --compare ${bench_args[*]}" >&2
 echo "gpu_report: planet bench --terrain-shading deferred ${bench_args[*]}" >&2
 "$planet" bench --terrain-shading deferred "${bench_args[@]}" --json "$work/frames_deferred.json" \
   > "$work/frames_deferred.txt"
+for shading in forward deferred; do
+  echo "gpu_report: planet bench --in-flight 2 --terrain-shading $shading ${bench_args[*]}" >&2
+  "$planet" bench --in-flight 2 --terrain-shading "$shading" "${bench_args[@]}" \
+    --json "$work/frames_in_flight_$shading.json" > "$work/frames_in_flight_$shading.txt"
+done
 
 # Three views: Earth from 20,000 km, land from 1.5 km, the ground at sunset looking at the sun
 # (about 2 m above the ground there, which lies at 494 m).
@@ -99,11 +108,12 @@ for entry in sys.argv[7:]:
     renders.append({"file": f"{name}.png", "camera": camera, "sun": sun, "exit": int(status), "validation": validation})
 load = lambda name: json.load(open(f"{work}/{name}.json"))
 validate, noise, frames, deferred = load("validate"), load("noise"), load("frames"), load("frames_deferred")
+in_flight = {shading: load(f"frames_in_flight_{shading}") for shading in ("forward", "deferred")}
 report = {
     "device": frames["device"], "driver": frames["driver"], "commit": commit,
     "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
     "validate": validate, "bench_noise": noise, "bench_frames": frames,
-    "bench_frames_deferred": deferred, "renders": renders,
+    "bench_frames_deferred": deferred, "bench_frames_in_flight": in_flight, "renders": renders,
 }
 json.dump(report, open(f"{out}/gpu_report.json", "w"), indent=2)
 
@@ -128,10 +138,18 @@ d = deferred["frame_ms"]
 lines.append(f"planet bench {bench_args} --terrain-shading deferred: frame median {d['median']:.2f} ms, "
              f"p99 {d['p99']:.2f} ms; GPU median {deferred['gpu_ms']['median']:.2f} ms")
 lines.append("  passes (median ms): " + ", ".join(f"{n} {p['median']:.2f}" for n, p in deferred["passes"].items()))
+for shading, run in in_flight.items():
+    p = run["frame_ms"]
+    lines.append(f"planet bench {bench_args} --in-flight 2 --terrain-shading {shading}: frame median {p['median']:.2f} ms "
+                 f"(GPU clock, end to end), p99 {p['p99']:.2f} ms; GPU median {run['gpu_ms']['median']:.2f} ms, "
+                 f"prepare {run['prepare_ms']['median']:.2f} ms")
 if (frames["width"], frames["height"]) == (1920, 1080):
     best = min(f["median"], d["median"])
+    best_in_flight = min(run["frame_ms"]["median"] for run in in_flight.values())
     met = "met" if best <= 3.3 else "not met"
-    lines.append(f"  issue 21 target, 1080p median <= 3.3 ms: {met} (the faster shading's {best:.2f} ms)")
+    lines.append(f"  issue 21 target, 1080p median <= 3.3 ms: {met} one frame at a time (the faster shading's "
+                 f"{best:.2f} ms); {'met' if best_in_flight <= 3.3 else 'not met'} with two in flight, as the viewer "
+                 f"draws ({best_in_flight:.2f} ms)")
 failed = [r["file"] for r in renders if r["exit"] != 0]
 lines.append(f"planet render{' --validation' if validation else ''}: " + ", ".join(r["file"] for r in renders) +
              (f"; FAILED: {', '.join(failed)}" if failed else ", all written"))

@@ -13,6 +13,7 @@
 #include "frame_plot.h"
 #include "bench/frame_bench.h"
 #include "render/sky_pass.h"
+#include "vk/buffer.h"
 
 namespace planet::cli {
 namespace {
@@ -24,6 +25,7 @@ struct FrameBenchCommand {
   int64_t warmup = 5;
   double fovDeg = 60.0;
   double flightFps = 60.0;
+  int64_t inFlight = 1;
   std::string sun;
   std::string exposure = fmt::format("{:g}", SkySettings{}.exposure);
   std::string path;
@@ -78,6 +80,11 @@ int runFrameBench(const GlobalOptions& global, const FrameBenchCommand& cmd, con
   if (!(cmd.flightFps == 0.0 || (cmd.flightFps >= 1.0 && cmd.flightFps <= kBenchMaxFlightFps)))
     throw UsageError(fmt::format("--flight-fps must be 0 or in 1..{}, got {}", kBenchMaxFlightFps, cmd.flightFps));
   o.flightFps = cmd.flightFps;
+  if (cmd.inFlight != 1 && cmd.inFlight != int64_t(vk::kFramesInFlight))
+    throw UsageError(fmt::format("--in-flight must be 1 or {}, got {}", vk::kFramesInFlight, cmd.inFlight));
+  if (cmd.inFlight > 1 && cmd.flightFps == 0.0)
+    throw UsageError("--in-flight 2 times each frame behind a real-time one: it needs --flight-fps above 0");
+  o.framesInFlight = uint32_t(cmd.inFlight);
   o.frames = uint32_t(cmd.frames);
   o.warmup = uint32_t(cmd.warmup);
   o.fovYDeg = cmd.fovDeg;
@@ -153,6 +160,12 @@ std::function<void(const std::string& command)> addFrameBenchOptions(CLI::App& b
           .add_option("--flight-fps", cmd->flightFps,
                       "Time each frame after an untimed one 1/RATE s of flight earlier, as in a real-time flight at "
                       "RATE frames per second (0: the timed frames only, each 1/(frames-1) of the path apart)")
+          ->capture_default_str());
+  add(bench
+          .add_option("--in-flight", cmd->inFlight,
+                      "Frames in flight: 1 (each frame's CPU work, then its GPU work, timed on the wall clock) or 2 "
+                      "(as the viewer: each frame prepared while the one before executes, timed from that one's end "
+                      "to its own on the GPU's clock)")
           ->capture_default_str());
   add(bench.add_option("--sun", cmd->sun,
                        "AZIMUTH,ELEVATION in degrees, seen from the camera's ground point [default: 135,35]"));

@@ -11,6 +11,7 @@
 #include "render/renderer.h"
 #include "render/view_quality.h"
 #include "vk/context.h"
+#include "vk/frame_ring.h"
 
 namespace planet {
 namespace {
@@ -52,6 +53,34 @@ FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResu
   f.patchLevelsDeferred = result.terrain.patchLevelsDeferred;
   f.metresPerVertexAtNadir = result.terrain.metresPerVertexAtNadir;
   return f;
+}
+
+// A timed frame drawn with two frames in flight (FrameBenchOptions::framesInFlight), as the viewer
+// draws: the frame before it (`previous`, a real-time frame earlier) is submitted, and the timed
+// one is prepared and recorded while that executes. Its time is the interval between the two
+// frames' ends on the GPU's clock: its own GPU work and whatever time the GPU waited for its
+// commands (the CPU's preparation and recording, where they take longer than the frame before
+// takes the GPU).
+FrameRecord pipelinedFrame(Renderer& renderer, vk::FrameRing& ring, const CameraPose& previous, const CameraPose& pose,
+                           const SunPose& sun, uint32_t index, double timeS) {
+  double prepareMs = 0.0;
+  auto submit = [&](const CameraPose& camera, uint32_t slot) {
+    const glm::dvec3 sunPlanet = sunDirection(sun, renderer.clampToGround(camera));
+    const auto start = std::chrono::steady_clock::now();
+    renderer.prepare(camera, sunPlanet, 0.0, slot);
+    prepareMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    renderer.record(ring.begin(slot), slot);
+    ring.submit(slot);
+  };
+  submit(previous, 0);
+  submit(pose, 1);
+  ring.waitAll();
+  RenderResult result;
+  result.prepareMs = prepareMs;
+  result.camera = renderer.clampToGround(pose);
+  result.timings = renderer.lastTimings(1);
+  result.terrain = renderer.terrain().frame();
+  return recordFrame(index, timeS, renderer.lastFrameEndMs(1) - renderer.lastFrameEndMs(0), result);
 }
 
 void addFrame(ModeRun& run, FrameRecord f) {
@@ -117,6 +146,10 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
     runs[m].mode = modes[m];
   }
   std::vector<double> lastMs(modes.size(), 0.0);
+  const bool pipelined = options.framesInFlight > 1;
+  std::vector<std::unique_ptr<vk::FrameRing>> rings;
+  if (pipelined)
+    for (size_t m = 0; m < modes.size(); ++m) rings.push_back(std::make_unique<vk::FrameRing>(context));
   for (int phase = 0; phase < 2; ++phase) {
     const bool warmup = phase == 0;
     const uint32_t count = warmup ? options.warmup : options.frames;
@@ -129,8 +162,13 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
       // one frame instead (a lead-in at the same pose would let the timed frame skip its work).
       const bool leadIn = !warmup && options.flightFps > 0.0;
       const double frameS = leadIn ? 1.0 / options.flightFps : 0.0;
-      if (leadIn && timeS - frameS < path.startS()) timeS = std::min(path.startS() + frameS, path.endS());
-      const CameraPose leadPose = cameraPoseAt(sampleCameraPath(path, std::max(timeS - frameS, path.startS())), planet);
+      // Two in flight: the lead-in settles a frame earlier still, and the frame in flight before
+      // the timed one (previousPose) is an ordinary real-time frame.
+      const double leadS = pipelined ? 2.0 * frameS : frameS;
+      if (leadIn && timeS - leadS < path.startS()) timeS = std::min(path.startS() + leadS, path.endS());
+      const CameraPose leadPose = cameraPoseAt(sampleCameraPath(path, std::max(timeS - leadS, path.startS())), planet);
+      const CameraPose previousPose =
+          cameraPoseAt(sampleCameraPath(path, std::max(timeS - frameS, path.startS())), planet);
       const CameraPose pose = cameraPoseAt(sampleCameraPath(path, timeS), planet);
       for (size_t m = 0; m < modes.size(); ++m) {
         if (progress) progress(modes[m].name, warmup, i, count, lastMs[m]);
@@ -147,6 +185,12 @@ std::vector<ModeRun> runModes(vk::Context& context, const PlanetDescription& pla
             TerrainPass& terrain = renderer.terrain(b);
             terrain.setPatchTexelsPerFrame(realTimePatchBudget(terrain.settings().patchSettings));
           }
+        }
+        if (pipelined && !warmup) {
+          FrameRecord f = pipelinedFrame(renderer, *rings[m], previousPose, pose, options.sun, i, timeS);
+          lastMs[m] = f.frameMs;
+          addFrame(runs[m], std::move(f));
+          continue;
         }
         const auto start = std::chrono::steady_clock::now();
         RenderResult result = renderer.render(pose, options.sun);
@@ -220,6 +264,7 @@ nlohmann::json FrameBenchReport::toJson() const {
   j["frames"] = options.frames;
   j["warmup"] = options.warmup;
   j["flight_fps"] = options.flightFps;
+  j["frames_in_flight"] = options.framesInFlight;
   j["preset"] = preset;
   j["preset_hash"] = fmt::format("{:016x}", presetHash);
   j["path"] = {{"source", pathSource}, {"keys", pathKeys}, {"duration_s", pathDurationS}};
@@ -316,15 +361,23 @@ std::string FrameBenchReport::table() const {
              ? fmt::format("each timed frame follows an untimed one 1/{} s of flight before it (a {} fps flight)\n",
                            options.flightFps, options.flightFps)
              : std::string("no lead-in frames: each timed frame follows the timed one before it\n");
+  out += options.framesInFlight > 1
+             ? fmt::format(
+                   "{} frames in flight, as the viewer draws: each timed frame is prepared and recorded while "
+                   "the frame before it executes; its time is from that frame's end to its own on the GPU's "
+                   "clock\n",
+                   options.framesInFlight)
+             : std::string("one frame at a time: each frame's CPU preparation and recording, then its GPU work\n");
   out += fmt::format("mesh: {}\n\n", describeMesh(options.mesh, options.meshAuto, options.height, options.fovYDeg));
   out += fmt::format("{:<34} {:>9} {:>9} {:>9} {:>9}\n", "ms (mode " + main.mode.name + ")", "median", "p95", "p99",
                      "max");
   auto row = [&](const std::string& name, const Summary& s) {
     out += fmt::format("{:<34} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n", name, s.median, s.p95, s.p99, s.max);
   };
-  row("frame (wall clock)", main.frameMs);
+  const bool pipelined = options.framesInFlight > 1;
+  row(pipelined ? "frame (GPU clock, end to end)" : "frame (wall clock)", main.frameMs);
   row("GPU (first to last timestamp)", main.gpuMs);
-  row("CPU (frame - GPU)", main.cpuMs);
+  row(pipelined ? "GPU waiting (frame - GPU)" : "CPU (frame - GPU)", main.cpuMs);
   row("  of which prepare (cull, uniforms)", main.prepareMs);
   for (size_t p = 0; p < main.passNames.size(); ++p) row("  pass " + main.passNames[p], main.passMs[p]);
   row("terrain time", main.terrainMs);
@@ -357,6 +410,10 @@ FrameBenchReport runFrameBench(vk::Context& context, const PlanetDescription& pl
   if (!(options.flightFps == 0.0 || (options.flightFps >= 1.0 && options.flightFps <= kBenchMaxFlightFps)))
     throw Error(fmt::format("the flight rate must be 0 or in 1..{} frames per second, got {}", kBenchMaxFlightFps,
                             options.flightFps));
+  if (options.framesInFlight != 1 && options.framesInFlight != vk::kFramesInFlight)
+    throw Error(fmt::format("frames in flight must be 1 or {}, got {}", vk::kFramesInFlight, options.framesInFlight));
+  if (options.framesInFlight > 1 && options.flightFps == 0.0)
+    throw Error("two frames in flight need the lead-in frames of a real-time flight (a flight rate above 0)");
   if (options.warmup > kBenchMaxWarmup)
     throw Error(fmt::format("warm-up frames must be in 0..{}, got {}", kBenchMaxWarmup, options.warmup));
   validateCameraPath(path, pathSource);

@@ -59,6 +59,13 @@ struct FrameBenchOptions {
   // frames (1.6 s on the default path with 40 frames: every patch level moved). 0: no lead-in,
   // each timed frame follows the one before it.
   double flightFps = 60.0;
+  // 1: each timed frame is submitted and waited for alone, so its wall-clock time is the CPU's
+  // preparation and recording, then the GPU's work (the serial frame). vk::kFramesInFlight (2): as
+  // the viewer draws, the timed frame is prepared and recorded while the real-time frame before it
+  // executes (after a lead-in that settles a frame earlier still), and its time is the interval
+  // between the two frames' ends on the GPU's clock: its GPU work and the time the GPU waited for
+  // its commands. Needs lead-in frames (flightFps > 0).
+  uint32_t framesInFlight = 1;
 };
 inline constexpr double kBenchMaxFlightFps = 1000.0;
 
@@ -89,7 +96,9 @@ struct FrameRecord {
   double pathTimeS = 0.0;
   CameraPose camera;  // as rendered
   double heightAboveGroundM = 0.0;
-  double frameMs = 0.0;               // wall clock of Renderer::render: CPU work, GPU work, waiting, read-back
+  // Wall clock of Renderer::render: CPU work, GPU work, waiting; with two frames in flight the
+  // interval between the frame's end and the one's before on the GPU's clock (framesInFlight).
+  double frameMs = 0.0;
   double gpuMs = 0.0;                 // first timestamp of the frame to the last
   double prepareMs = 0.0;             // the CPU's preparation (RenderResult::prepareMs), part of cpuMs
   std::vector<vk::GpuTiming> passes;  // GPU scopes in recording order
@@ -102,6 +111,8 @@ struct FrameRecord {
 
   double passMs(const std::string& name) const;  // 0 when the pass did not run this frame
   double terrainMs() const;                      // kTerrainTimePasses + cpuHeightsMs
+  // The frame's time outside its GPU span: the CPU's (serial), or the GPU's wait for the frame's
+  // commands (two in flight).
   double cpuMs() const { return frameMs - gpuMs; }
 };
 

@@ -199,6 +199,11 @@ std::vector<vk::GpuTiming> Renderer::lastTimings(uint32_t slot) const {
   return timerCreated_ ? timers_[slot].results(context_) : std::vector<vk::GpuTiming>{};
 }
 
+double Renderer::lastFrameEndMs(uint32_t slot) const {
+  vk::checkFrameSlot(slot);
+  return timerCreated_ ? timers_[slot].lastStampMs(context_) : 0.0;
+}
+
 CameraPose Renderer::clampToGround(const CameraPose& camera, bool* raised) const {
   return raisedAboveGround(bodies_[0].planet, camera, raised);
 }

@@ -125,6 +125,11 @@ class Renderer {
   // without timestamps or before that slot's first frame).
   vk::Image& output() { return *color_; }
   std::vector<vk::GpuTiming> lastTimings(uint32_t slot) const;
+  // When the last frame recorded for `slot` ended on the GPU's clock (ms; GpuTimer::lastStampMs),
+  // to compare with another slot's: the interval between two frames' ends includes the time the
+  // GPU waited for the later one's commands. Read after that slot's fence signalled; 0 without
+  // timestamps or before the slot's first frame.
+  double lastFrameEndMs(uint32_t slot) const;
   // With autoExposure: what the luminance pass measured and applied in the last frame recorded
   // for `slot` (read after its fence signalled; zeros before that slot's first frame). Without:
   // nothing.

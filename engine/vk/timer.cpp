@@ -80,4 +80,12 @@ std::vector<GpuTiming> GpuTimer::results(Context& context) const {
   return timings;
 }
 
+double GpuTimer::lastStampMs(Context& context) const {
+  if (queriesWritten_ == 0) return 0.0;
+  uint64_t stamp = 0;
+  VK_CHECK(vkGetQueryPoolResults(context.device, pool_.get(), queriesWritten_ - 1, 1, sizeof(stamp), &stamp,
+                                 sizeof(stamp), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return double(stamp & validMask_) * periodNs_ * 1e-6;
+}
+
 }  // namespace planet::vk

@@ -42,6 +42,10 @@ class GpuTimer {
   // Durations of the scopes recorded since reset(), in recording order. Call only after the
   // command buffer's fence has signalled.
   std::vector<GpuTiming> results(Context& context) const;
+  // The last timestamp written since reset(), in milliseconds of the device's clock (its valid
+  // bits): comparable between recordings submitted to one queue, so that two frames' ends give the
+  // interval between them on the GPU. 0 without scopes. Call only after the fence has signalled.
+  double lastStampMs(Context& context) const;
 
  private:
   // Writes the next timestamp query (they are written in order from 0) and returns its index.
