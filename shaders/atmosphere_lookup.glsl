@@ -20,4 +20,18 @@ vec3 sunTransmittanceTable(AtmosphereParams a, float h, float muS) {
 #define SUN_TRANSMITTANCE(a, h, muS) sunTransmittanceTable(a, h, muS)
 #include "common/atmosphere.glsl"
 
+// The sky-view table's texture coordinates (skyViewTexel) of a direction at zenith angle theta,
+// for the viewpoint's zenith range (skyViewZenithRange), whose part normal to the vertical is
+// viewFlat and the sun's sunFlat (the azimuth between them). Each half of the rows (above and
+// below the ground's horizon) is read only from its own texels: the two sides of the horizon are
+// the sky and the ground.
+vec2 skyViewUv(float theta, vec2 range, vec3 viewFlat, vec3 sunFlat) {
+  float v = unitToTexel(skyViewV(theta, range), float(kSkyViewHeight));
+  float middle = 0.5f * float(kSkyViewHeight);
+  v = theta <= range.y ? min(v, (middle - 0.5f) / float(kSkyViewHeight)) : max(v, (middle + 0.5f) / float(kSkyViewHeight));
+  float lengths = length(viewFlat) * length(sunFlat);
+  float cosPhi = lengths > 1e-7f ? clamp(dot(viewFlat, sunFlat) / lengths, -1.0f, 1.0f) : 1.0f;
+  return vec2(unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth)), v);
+}
+
 #endif

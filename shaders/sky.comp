@@ -102,16 +102,7 @@ vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
   vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
   float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
   if (theta < range.x) return vec3(0.0f);
-  float v = unitToTexel(skyViewV(theta, range), float(kSkyViewHeight));
-  // Each half of the rows (above and below the ground's horizon) is read only from its own
-  // texels: the two sides of the horizon are the sky and the ground.
-  float middle = 0.5f * float(kSkyViewHeight);
-  v = theta <= range.y ? min(v, (middle - 0.5f) / float(kSkyViewHeight)) : max(v, (middle + 0.5f) / float(kSkyViewHeight));
-  vec2 viewFlat = vec2(dir.x, dir.y), sunFlat = vec2(sun.x, sun.y);
-  float lengths = length(viewFlat) * length(sunFlat);
-  float cosPhi = lengths > 1e-7f ? clamp(dot(viewFlat, sunFlat) / lengths, -1.0f, 1.0f) : 1.0f;
-  float u = unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth));
-  return textureLod(skyView, vec2(u, v), 0.0f).rgb;
+  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sun.xy, 0.0f)), 0.0f).rgb;
 }
 
 // The share of the sun seen by the air along a ray that met no geometry, for the sky-view table,

@@ -124,14 +124,9 @@ float glintFactor(vec3 normal, vec3 toCamera, vec3 sun, float m2) {
 vec3 skyViewReflection(vec3 reflected, vec3 up, vec3 sun) {
   vec2 range = skyViewZenithRange(frame.atmosphere, max(frame.camera.x, 0.0f), frame.skyView.y);
   float cosZenith = clamp(dot(reflected, up), 0.0f, 1.0f);
-  float theta = mix(range.x, range.y, acos(cosZenith) * (2.0f / kAtmospherePi));
-  float v = min(unitToTexel(skyViewV(theta, range), float(kSkyViewHeight)),
-                (0.5f * float(kSkyViewHeight) - 0.5f) / float(kSkyViewHeight));
-  vec3 viewFlat = reflected - cosZenith * up, sunFlat = sun - dot(sun, up) * up;
-  float lengths = length(viewFlat) * length(sunFlat);
-  float cosPhi = lengths > 1e-7f ? clamp(dot(viewFlat, sunFlat) / lengths, -1.0f, 1.0f) : 1.0f;
-  float u = unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth));
-  return textureLod(skyViewTable, vec2(u, v), 0.0f).rgb;
+  float theta = mix(range.x, range.y, min(acos(cosZenith) * (2.0f / kAtmospherePi), 1.0f));  // the sky half
+  vec2 uv = skyViewUv(theta, range, reflected - cosZenith * up, sun - dot(sun, up) * up);
+  return textureLod(skyViewTable, uv, 0.0f).rgb;
 }
 
 // The sky the sea mirrors along `reflected` where the frame draws clouds: the layer's column

@@ -63,21 +63,18 @@ FrameRecord recordFrame(uint32_t index, double timeS, double frameMs, RenderResu
 // takes the GPU).
 FrameRecord pipelinedFrame(Renderer& renderer, vk::FrameRing& ring, const CameraPose& previous, const CameraPose& pose,
                            const SunPose& sun, uint32_t index, double timeS) {
-  double prepareMs = 0.0;
+  RenderResult result;
   auto submit = [&](const CameraPose& camera, uint32_t slot) {
     const glm::dvec3 sunPlanet = sunDirection(sun, renderer.clampToGround(camera));
     const auto start = std::chrono::steady_clock::now();
-    renderer.prepare(camera, sunPlanet, 0.0, slot);
-    prepareMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    result.camera = renderer.prepare(camera, sunPlanet, 0.0, slot).camera;  // as rendered
+    result.prepareMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     renderer.record(ring.begin(slot), slot);
     ring.submit(slot);
   };
   submit(previous, 0);
   submit(pose, 1);
   ring.waitAll();
-  RenderResult result;
-  result.prepareMs = prepareMs;
-  result.camera = renderer.clampToGround(pose);
   result.timings = renderer.lastTimings(1);
   result.terrain = renderer.terrain().frame();
   return recordFrame(index, timeS, renderer.lastFrameEndMs(1) - renderer.lastFrameEndMs(0), result);
