@@ -21,6 +21,8 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
+#include "shared/star_params.h"
+#include "common/star_visibility.glsl"
 
 #ifndef SKY_REFERENCE
 // The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial,
@@ -259,11 +261,11 @@ void main() {
   if (geometry) {
     result = surface * transmittance + inscatter;
   } else {
-    // Background: stars (drawn first, where nothing covered them) fade out as the sky in
-    // front of them brightens on the display, as the eye would lose them.
-    float skyDisplay = luminance(inscatter) * sky.camera.z;
-    // (A clear noon sky is ~0.07 here, civil twilight ~0.002.)
-    float starFade = 1.0f - smoothstep(0.001f, 0.01f, skyDisplay);
+    // Background: stars (drawn first, where nothing covered them), each faded where the eye
+    // would lose it against the sky in front: its magnitude (the relative flux stars.frag left in
+    // alpha, through the air's transmittance) against the sky's radiance. A pixel with no star
+    // (another body's air seen past this one's) keeps its light.
+    float starFade = stored.a > 0.0f ? starVisibleShare(stored.a * luminance(transmittance), luminance(inscatter)) : 1.0f;
     result = surface * transmittance * starFade + inscatter;
     if (!seesGround && sky.extent.w > 0.5f) {
       float sunRadius = a.radii.z;
@@ -275,5 +277,7 @@ void main() {
   }
   // Keep the target finite whatever the inputs (a NaN would spread through the tonemap).
   result = clamp(result, vec3(0.0f), vec3(6.0e4f));
-  imageStore(color, pixel, vec4(result, 1.0f));
+  // Alpha: 1 on geometry; the stars' relative flux kept on the background, for the compose of a
+  // nearer body's air, which fades them against its own sky.
+  imageStore(color, pixel, vec4(result, geometry ? 1.0f : stored.a));
 }

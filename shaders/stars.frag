@@ -2,7 +2,10 @@
 // A star's sprite: each pixel gets the part of the star's Gaussian image that falls on its
 // square (the Gaussian integrated over the pixel, separably in x and y), added (blend ONE, ONE)
 // to the HDR colour target, so the pixels of a star add up to its flux wherever it lies between
-// pixel centres. Alpha 0: the stars leave the target's alpha alone.
+// pixel centres. Alpha gets the star's relative flux 10^(−0.4 m) at each of its pixels (added up
+// where stars overlap; the target is cleared to 0): the sky's compose fades each star by its
+// magnitude against the sky in front of it (common/star_visibility.glsl), and nothing else reads
+// the alpha of a pixel that no geometry covers.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/star_params.h"
@@ -10,6 +13,7 @@
 layout(location = 0) flat in vec3 inFlux;
 layout(location = 1) flat in float inSize;
 layout(location = 2) flat in float inSigma;
+layout(location = 3) flat in float inRelativeFlux;
 
 layout(location = 0) out vec4 outColor;
 
@@ -35,5 +39,5 @@ void main() {
     vec2 d = (gl_PointCoord - vec2(0.5f)) * inSize;
     w = pixelShare(d.x, inSigma) * pixelShare(d.y, inSigma);
   }
-  outColor = vec4(inFlux * w, 0.0f);
+  outColor = vec4(inFlux * w, inRelativeFlux);
 }

@@ -13,6 +13,7 @@ layout(std430, set = 0, binding = kStarBindingCatalogue) readonly buffer Catalog
 layout(location = 0) flat out vec3 outFlux;    // HDR flux of the star, per channel
 layout(location = 1) flat out float outSize;   // the point's size in pixels
 layout(location = 2) flat out float outSigma;  // of the star's Gaussian, in pixels; 0: one plain pixel
+layout(location = 3) flat out float outRelativeFlux;  // 10^(−0.4 m): 1 at magnitude 0
 
 #include "common/stars.glsl"
 
@@ -27,4 +28,5 @@ void main() {
   gl_PointSize = plain ? 1.0f : size;
   outSize = gl_PointSize;
   outFlux = star.color.rgb * params.brightness;
+  outRelativeFlux = exp2(-1.32877124f * star.direction.w);  // 10^(−0.4 m) = 2^(−0.4 log2(10) m)
 }

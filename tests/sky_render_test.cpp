@@ -703,6 +703,49 @@ TEST_F(SkyRender, TwilightIsBlueOverheadWithAnOrangeGlowUnderTheSun) {
   EXPECT_GT(glow.r, glow.g) << glow.r << " " << glow.g;
 }
 
+// Stars in the upper `rows` of an image: pixels brighter than their eight neighbours and than
+// the pixels three away on either side by more than 20 of 255 (the sky's gradient is not a star).
+int countStars(const Rgba8Image& image, uint32_t rows) {
+  auto lum = [&](uint32_t x, uint32_t y) {
+    const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+  };
+  int stars = 0;
+  for (uint32_t y = 3; y + 3 < rows; ++y)
+    for (uint32_t x = 3; x + 3 < image.width; ++x) {
+      const double l = lum(x, y);
+      bool peak = l > lum(x - 3, y) + 20.0 && l > lum(x + 3, y) + 20.0;
+      for (int dy = -1; dy <= 1 && peak; ++dy)
+        for (int dx = -1; dx <= 1 && peak; ++dx)
+          if ((dx != 0 || dy != 0) && lum(x + dx, y + dy) >= l) peak = false;
+      stars += peak ? 1 : 0;
+    }
+  return stars;
+}
+
+// The stars come out one by one at dusk (issue 21, point 4): each shows once the sky in front of
+// it is dark enough for its magnitude (common/star_visibility.glsl), as the eye sees them, not all
+// at once: with the sun 4° down a few of the brightest, more at 8°, the whole catalogue at night.
+// The same exposure (a night's) for all three, so that only the fade differs.
+TEST_F(SkyRender, TheStarsComeOutOneByOneAtDusk) {
+  RenderSettings settings = skySettings();
+  settings.width = 320;
+  settings.height = 180;
+  settings.sky.exposure = 64.0;
+  Renderer renderer(context(), clearEarth(), settings);
+  const CameraPose east{35, -20, 2, 90, 35};  // the sky from 5° to 65° up, toward the sun's side
+  const uint32_t rows = 150;                  // above the sea
+  const int civil = countStars(renderer.render(east, {90, -4}).image, rows);
+  const int nautical = countStars(renderer.render(east, {90, -8}).image, rows);
+  const int night = countStars(renderer.render(east, {90, -30}).image, rows);
+  std::printf("stars seen with the sun 4 degrees down: %d, 8 degrees: %d, at night: %d\n", civil, nautical, night);
+  EXPECT_GE(civil, 1);
+  EXPECT_GT(nautical, civil);
+  EXPECT_LT(4 * civil, nautical);
+  EXPECT_LT(4 * nautical, night);
+  EXPECT_GE(night, 100);
+}
+
 // Mars (issue 21, point 3): a butterscotch daytime sky (red over green over blue) away from the
 // sun, and at sunset, as in Curiosity's photographs, a blue glow around the sun (its dust scatters
 // blue light more forward than red) in a brown sky.

@@ -12,7 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include "planet/planet_description.h"
+#include "reference/atmosphere_model.h"
 #include "reference/star_catalogue.h"
+#include "render/star_pass.h"
 #include "reference/star_kernel.h"
 #include "test_support.h"
 
@@ -301,6 +304,40 @@ TEST(StarCatalogue, ValidationNamesTheBadValue) {
   s = StarSettings{};
   s.count = 0;
   EXPECT_NE(errorOf([&] { starCatalogueCpu(s); }).find("star count 0"), std::string::npos);
+}
+
+// Which stars the eye sees against the sky (issue 21, point 4; common/star_visibility.glsl):
+// magnitude 6.5 under a dark sky of 2e-4 cd/m² (the naked eye's limit), none of the catalogue by
+// day, only the brightest (brighter than magnitude 0) at sunset, about magnitude 3 against the zenith with the sun 6°
+// down (the end of civil twilight, when the brightest stars are out) and 5 at 12° (the end of nautical twilight), the
+// sky's radiance from the CPU reference of the atmosphere; the share fades in over ±0.5 magnitude.
+TEST(StarVisibility, TheEyeSeesFainterStarsAsTheSkyDarkens) {
+  const double darkSky = 2e-4 / double(gpu::kStarSunLux);  // 2e-4 cd/m² in the frame's units
+  EXPECT_NEAR(starLimitingMagnitude(darkSky), 6.5, 0.2);
+  const gpu::AtmosphereParams params = makeAtmosphereParams(resolvePreset("earth"));
+  const MultipleScatteringTable table = multipleScatteringTable(params);
+  auto zenith = [&](double sunElevationDeg) {
+    const double muS = std::sin(sunElevationDeg * std::numbers::pi / 180.0);
+    const glm::dvec3 c = skyRadiance(params, 2.0, 1.0, muS, muS, 256, 256, &table).total;
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+  };
+  const double noon = starLimitingMagnitude(zenith(50.0));
+  const double sunset = starLimitingMagnitude(zenith(0.0));
+  const double civil = starLimitingMagnitude(zenith(-6.0));
+  const double nautical = starLimitingMagnitude(zenith(-12.0));
+  std::printf("[ measured ] faintest star at the zenith: noon %.2f, sunset %.2f, sun -6: %.2f, sun -12: %.2f\n", noon,
+              sunset, civil, nautical);
+  EXPECT_LT(noon, gpu::kStarBrightestMagnitude - 0.5f);
+  EXPECT_LT(sunset, 0.0);  // the sun on the horizon: at most the few brightest, at the zenith
+  EXPECT_GT(civil, 2.0);
+  EXPECT_LT(civil, 4.0);
+  EXPECT_GT(nautical, 4.5);
+  EXPECT_LT(nautical, starLimitingMagnitude(darkSky));
+  // The fade: half a magnitude above the limit a star shows whole, half below not at all.
+  auto flux = [](double magnitude) { return std::pow(10.0, -0.4 * magnitude); };
+  EXPECT_NEAR(starVisibleShare(flux(civil - 0.55), zenith(-6.0)), 1.0, 1e-6);
+  EXPECT_NEAR(starVisibleShare(flux(civil), zenith(-6.0)), 0.5, 0.02);
+  EXPECT_NEAR(starVisibleShare(flux(civil + 0.55), zenith(-6.0)), 0.0, 1e-6);
 }
 
 }  // namespace

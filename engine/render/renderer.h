@@ -42,8 +42,8 @@ struct RenderSettings {
   TerrainSettings terrain;
   SkySettings sky;
   // Eye adaptation (issue 21, point 4): the exposure from the frame's own luminance
-  // (LuminancePass) instead of sky.exposure, which then only sets where the stars fade (the sky
-  // brightness at which they go, as the eye loses them, does not depend on the camera's exposure).
+  // (LuminancePass) instead of sky.exposure. (Which stars show does not depend on either: each
+  // fades by its magnitude against the sky's radiance, common/star_visibility.glsl.)
   bool autoExposure = false;
 };
 

@@ -318,7 +318,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.atmosphere.ozoneSun.y *= float(view.sunIrradianceScale);
   u.clipToLocal = glm::mat4(glm::inverse(view.viewProjection));
   u.localToPlanet = glm::mat4(glm::mat3(view.localToPlanet));
-  u.camera = glm::vec4(float(view.altitudeM), float(view.nearPlaneM), float(settings_.exposure), float(view.timeS));
+  u.camera = glm::vec4(float(view.altitudeM), float(view.nearPlaneM), 0.0f, float(view.timeS));
   u.forward = glm::vec4(glm::vec3(view.forward), float(settings_.viewSamples));
   u.sunLocal = glm::vec4(glm::vec3(view.sunLocal), float(planet_.stars.brightness));
   const bool clouds = cloudsDrawn();

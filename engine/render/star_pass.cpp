@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "common/definitions.h"
 #include "core/error.h"
 #include "spv/stars.comp.h"
 #include "spv/stars.frag.h"
@@ -18,6 +19,15 @@
 
 namespace planet {
 namespace {
+
+using namespace planet::gpu;
+
+// shaders/common/star_visibility.glsl compiled as C++ in float, as the GPU runs it.
+struct StarVisibilityKernel {
+  PLANET_GLSL_KERNEL(float)
+  static real log2(real x) { return std::log2(x); }
+#include "common/star_visibility.glsl"
+};
 
 constexpr VkDescriptorType kBindingTypes[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};  // kStarBindingCatalogue
 // One pipeline layout for both pipelines: the compute shader reads the first 16 bytes of the
@@ -137,6 +147,12 @@ std::vector<gpu::StarRecord> StarPass::readCatalogue() {
   std::vector<gpu::StarRecord> stars(settings_.count);
   vk::readbackBuffer(context_, *catalogue_, stars.data(), stars.size() * sizeof(gpu::StarRecord));
   return stars;
+}
+
+double starLimitingMagnitude(double sky) { return StarVisibilityKernel{}.starLimitingMagnitude(float(sky)); }
+
+double starVisibleShare(double relativeFlux, double sky) {
+  return StarVisibilityKernel{}.starVisibleShare(float(relativeFlux), float(sky));
 }
 
 }  // namespace planet

@@ -88,4 +88,11 @@ class StarPass {
   vk::Owned<VkPipeline> drawPipeline_;
 };
 
+// Which stars the eye sees against the sky in front of them (shaders/common/star_visibility.glsl,
+// as the sky's compose applies it): the faintest magnitude seen against a sky of HDR luminance
+// `sky` (the frame's units: the sun's irradiance above the air is 1), and the share of a star's
+// light that shows, from its relative flux 10^(−0.4 m) as it reaches the eye.
+double starLimitingMagnitude(double sky);
+double starVisibleShare(double relativeFlux, double sky);
+
 }  // namespace planet

@@ -119,7 +119,7 @@ struct SkyUniforms {
   AtmosphereParams atmosphere;
   mat4 clipToLocal;    // clip (x, y) at depth 1 → view ray, local frame, camera at the origin
   mat4 localToPlanet;  // rotation: local → planet frame directions
-  vec4 camera;         // x: camera altitude above R (m), y: near plane (m), z: exposure, w: time (s)
+  vec4 camera;         // x: camera altitude above R (m), y: near plane (m), z: unused, w: time (s)
   vec4 forward;        // xyz: camera forward (local), w: view samples per pixel
   vec4 sunLocal;       // xyz: toward the sun (local), w: star brightness
   vec4 cameraPlanet;   // xyz: camera position in the planet frame (m, float: clouds only), w: 1 if clouds

@@ -32,6 +32,13 @@ GPU_CONST float kStarMaxTemperatureK = 25000.0f;  // upper end of Kang et al.'s 
 GPU_CONST float kStarSpriteSigma = 0.25f;
 GPU_CONST float kStarSpriteMargin = 2.0f;
 
+// Whether the eye sees a star against the sky in front of it (common/star_visibility.glsl).
+GPU_CONST float kStarSunLux = 1.28e5f;  // the sun's illuminance above the air: HDR radiance 1 is 1.28e5 cd/m²
+GPU_CONST float kStarMagnitudeZeroLux = 2.54e-6f;  // the illuminance of a magnitude-0 star
+GPU_CONST float kStarNanolambertCdM2 = 3.183e-6f;  // 1 nL in cd/m² (a lambert is 10⁴/π cd/m²)
+GPU_CONST float kStarLuxPerFootCandle = 10.764f;
+GPU_CONST float kStarFadeStops = 0.66f;  // a star fades in over ±0.66 stops (±0.5 magnitude) about the threshold
+
 // One star. 32 bytes, so the vertex shader reads it with two aligned vec4 loads.
 struct StarRecord {
   vec4 direction;  // xyz: unit direction (planet frame), w: apparent visual magnitude
