@@ -2,7 +2,9 @@
 // The aerial-perspective volume (Hillaire 2020, §5.4), rebuilt every frame before the compose
 // pass: for each of kAerialSize² columns across the screen, the light the air scatters toward
 // the camera (single and multiple scattering) and the transmittance from the camera to the far
-// end of each of the column's kAerialSize slices (sky_aerial.glsl). One invocation marches a
+// end of each of the column's kAerialSize slices, the latter as the optical depth; and the light
+// by the column's opacity rather than its distance (sky_compose.glsl, aerialPerspective, says
+// why). One invocation marches a
 // whole column, kAerialStepsPerSlice steps per slice (common/atmosphere.glsl, scatteringStep),
 // and stops where the ray meets the ground sphere: slices past it keep the value there. The
 // scene's other bodies darken the samples in their shadows (eclipses, common/eclipse.glsl).
@@ -64,10 +66,20 @@ void main() {
   vec3 phaseM = miePhases(a, nu);
   vec3 single = vec3(0.0f), total = vec3(0.0f), transmittance = vec3(1.0f);
   float done = tStart;
-  // Slice 0 is the camera (no air yet), so that the compose reads any distance with one filtered
-  // fetch (sky_aerial.glsl); slice k + 1 ends where the k-th of the column's stretch does.
+  // The depth volume's slice 0 is the camera (no air yet), so that the compose reads any
+  // distance between two slices (sky_aerial.glsl); slice k + 1 ends where the k-th of the
+  // column's stretch does. From inside the air the light volume's level j holds the light where
+  // the column's opacity (green) reaches j / kAerialSize, found between the ends of the march's
+  // steps as linear in the opacity; levels the column never reaches hold its light at its end.
+  // From above the air, where the columns' rays differ most (at the limb some cross the thick air
+  // low down, their neighbours only the thin air above), it holds the light at the slices' ends,
+  // as the depth volume does, and the compose reads both by distance.
+  bool byOpacity = !aerialFromAbove();
   imageStore(aerialLight, ivec3(column, 0), vec4(0.0f));
-  imageStore(aerialTransmittance, ivec3(column, 0), vec4(1.0f));
+  imageStore(aerialTransmittance, ivec3(column, 0), vec4(0.0f));
+  uint level = 1u;
+  vec3 lastTotal = vec3(0.0f);
+  float lastOpacity = 0.0f;
   for (uint k = 0u; k < kAerialSize; ++k) {
     float target = air ? min(aerialSliceEnd(k, columnStretch), stretch.y) : 0.0f;
     if (target > done) {
@@ -75,10 +87,18 @@ void main() {
       for (uint i = 0u; i < kAerialStepsPerSlice; ++i) {
         float t = done - tStart + (float(i) + 0.5f) * dt;
         scatteringStep(a, h0, mu0, muS0, nu, phaseR, phaseM, t, dt, single, total, transmittance);
+        float opacity = 1.0f - transmittance.y;
+        for (; byOpacity && level < kAerialSize && float(level) / float(kAerialSize) <= opacity; ++level) {
+          float w = (float(level) / float(kAerialSize) - lastOpacity) / max(opacity - lastOpacity, 1.0e-7f);
+          imageStore(aerialLight, ivec3(column, level), vec4(mix(lastTotal, total, clamp(w, 0.0f, 1.0f)), 0.0f));
+        }
+        lastTotal = total;
+        lastOpacity = opacity;
       }
       done = target;
     }
-    imageStore(aerialLight, ivec3(column, k + 1u), vec4(total, 0.0f));
-    imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(transmittance, 0.0f));
+    imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(-log(max(transmittance, vec3(1.0e-30f))), 0.0f));
+    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), vec4(total, 0.0f));
   }
+  for (; byOpacity && level <= kAerialSize; ++level) imageStore(aerialLight, ivec3(column, level), vec4(total, 0.0f));
 }

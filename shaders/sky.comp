@@ -236,7 +236,7 @@ void main() {
     bool aerial = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : geometry && !pastAir;
 #endif
     if (aerial) {
-      aerialPerspective(uv, tGeometry, columnStretch, inscatter, transmittance);
+      aerialPerspective(uv, tGeometry, mu, columnStretch, inscatter, transmittance);
     } else {
       inscatter = skyViewRadiance(dir, sun, h, hGround);
       // Toward the sun's disc, the stars and geometry past the air: the transmittance table

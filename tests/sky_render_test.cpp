@@ -460,6 +460,35 @@ TEST_F(SkyRender, TablesSkyMatchesTheReferenceMarch) {
   }
 }
 
+// The haze over the sea from an airliner's height at sunset (the aerial-perspective volume, issue
+// 21, point 1) follows the per-pixel march without bands: from 10 km looking 5° down, the mean of
+// each row within 3 of 255 of the march's. The volume held its light by distance, filtered
+// between slices that near the camera are long next to the haze's scale height, and the rows
+// fell up to 6.5 short of the march, in bands a slice wide (35.2 dB); it now holds it by opacity
+// and takes the transmittance from the table along each pixel's own ray (measured 49.3 dB, the
+// worst row 2.1 off, at the horizon).
+TEST_F(SkyRender, TheHazeOverTheSeaFollowsTheMarchWithoutBandsAtTheSlices) {
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  RenderSettings reference = settings;
+  reference.sky.mode = SkyMode::Reference;
+  const PlanetDescription earth = clearEarth();
+  const CameraPose airliner{35, -20, 1.0e4, 90, -5};
+  const SunPose sunset{90, 2};
+  const Rgba8Image a = Renderer(context(), earth, settings).render(airliner, sunset).image;
+  const Rgba8Image b = Renderer(context(), earth, reference).render(airliner, sunset).image;
+  double worstRow = 0.0;
+  for (uint32_t y = 0; y < 180; ++y)
+    worstRow = std::max(
+        worstRow, std::abs(meanColor(a, 0, y, 320, y + 1).luminance() - meanColor(b, 0, y, 320, y + 1).luminance()));
+  const double psnr = psnrRgb(a, b);
+  std::printf("haze over the sea from 10 km at sunset: %.1f dB against the march, worst row %.2f of 255\n", psnr,
+              worstRow);
+  EXPECT_GE(psnr, 44.0);
+  EXPECT_LT(worstRow, 3.0);
+}
+
 // The cloud pass at half resolution (issue 21, point 7), upsampled by the compose, against the
 // same pass at every pixel (SkySettings::cloudScale 1), on views with clouds and silhouettes:
 // mountains standing in the layer with cloud between and behind their ridges (the camera 200 m

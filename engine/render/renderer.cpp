@@ -413,6 +413,7 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     const glm::dmat3 planetToLocal = glm::transpose(bodyFrame.viewOrientation.localToPlanet);
     SkyView skyView;
     skyView.lowestSurfaceM = bodies_[i].terrain->lowestSurfaceM();
+    skyView.highestSurfaceM = bodies_[i].terrain->maxTerrainHeightM();
     skyView.ownSurfacesOnly = bodies_.size() == 1 && !bodies_[i].rings &&
                               bodies_[i].terrain->maxTerrainHeightM() < bodies_[i].planet.atmosphere.heightM;
     skyView.viewProjection = projection * viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);

@@ -112,6 +112,10 @@ struct SkyView {
   // the sphere below which a ray that met no geometry has met the ground. With a sea the pass
   // uses the sea level instead (where the haze march of a sea pixel ends).
   double lowestSurfaceM = 0.0;
+  // The highest terrain (m above the radius sphere, TerrainPass::maxTerrainHeightM): with
+  // ownSurfacesOnly, the aerial-perspective volume reaches only as far as it or the clouds' top can
+  // be seen.
+  double highestSurfaceM = 0.0;
   // The sun's disc is drawn by one compose pass per frame: in a scene of several bodies, by the
   // last one (the camera's own body), after the farther bodies' atmospheres were composed.
   bool drawSun = true;

@@ -24,8 +24,8 @@ GPU_CONST uint kSkyBindingTransmittance = 3u;        // sampler2D: the transmitt
 GPU_CONST uint kSkyBindingClouds = 4u;               // samplerCube: the three cloud cover images (rgb)
 GPU_CONST uint kSkyBindingMultipleScattering = 5u;   // sampler2D: Ψ_ms (the reference march)
 GPU_CONST uint kSkyBindingSkyView = 6u;              // sampler2D: the sky-view table (the tables' compose)
-GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler3D: in-scattered light per froxel
-GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler3D: transmittance per froxel
+GPU_CONST uint kSkyBindingAerialLight = 7u;          // sampler3D: in-scattered light per column and opacity
+GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler3D: optical depth per froxel
 // The cloud pass's results (sky_clouds.comp writes one texel per SkyUniforms::cloudShape.w² pixels from the top
 // left corner, sky.comp reads them):
 GPU_CONST uint kSkyBindingCloudLight = 9u;  // image2D rgba16f: rgb the cloud's light composited with the air in front
@@ -63,9 +63,11 @@ GPU_CONST uint kSkyTileLists = 6u;
 GPU_CONST uint kSkyViewWidth = 96u;
 GPU_CONST uint kSkyViewHeight = 108u;
 GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic from inside the air)
-// Aerial-perspective volume: kAerialSize² columns over the screen, kAerialSize slices along each
-// column's ray (rgba16f 3D images of kAerialSize + 1 slices, the first the camera's): rgb = light
-// scattered toward the camera and transmittance from the camera to the slice's far end.
+// Aerial-perspective volume: kAerialSize² columns over the screen, each with kAerialSize + 1
+// slices along its ray in two rgba16f 3D images: the air's optical depth τ = −ln T from the camera
+// to each slice's far end (the first the camera's, 0), and the light scattered toward the camera
+// where the column's opacity 1 − T (green) reaches j / kAerialSize (from above the air: at the
+// slices' ends; sky_compose.glsl, aerialPerspective, says why).
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
 // Bindings of the per-frame table builds (set 0).
