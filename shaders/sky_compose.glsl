@@ -194,13 +194,13 @@ vec3 transmittanceAlong(AtmosphereParams a, float h, float mu, float t, out floa
 //   optical depth filtered between the two slices around t (from above they split each column's
 //   own stretch through the air).
 // - The light, from inside the air, is the columns' at the pixel's opacity 1 − T (green), which
-//   indexes the light's volume (from above, distance does, as for the depth). The light gathered along a ray grows with its opacity at the rate of the air's own
-//   light, which changes slowly, so it is close to linear between the volume's opacity levels and
-//   the columns agree at equal opacity where their rays have crossed different distances of
-//   different air. Held by distance and filtered between slices, the light and the transmittance
-//   fell short of the march where the air thickens along the ray (a slice near the camera is long
-//   next to the haze's scale height): by up to 7 of 255 on the sea seen from 10 km at sunset, in
-//   bands at the slices.
+//   indexes the light's volume (from above, distance does, as for the depth). The light gathered
+//   along a ray grows with its opacity at the rate of the air's own light, which changes slowly,
+//   so it is close to linear between the volume's opacity levels, and the columns agree at equal
+//   opacity where their rays have crossed different distances of different air. Held by distance
+//   and filtered between slices, the light and the transmittance fell short of the march where
+//   the air thickens along the ray (a slice near the camera is long next to the haze's scale
+//   height): by 6 to 8 of 255 on the sea seen from 10 to 30 km at sunset, in bands at the slices.
 void aerialPerspective(vec2 uv, float t, float mu, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
   // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
   float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
