@@ -414,8 +414,8 @@ Renderer::Prepared Renderer::prepareFrame(const SceneView& view, size_t primary,
     SkyView skyView;
     skyView.lowestSurfaceM = bodies_[i].terrain->lowestSurfaceM();
     skyView.highestSurfaceM = bodies_[i].terrain->maxTerrainHeightM();
-    skyView.ownSurfacesOnly = bodies_.size() == 1 && !bodies_[i].rings &&
-                              bodies_[i].terrain->maxTerrainHeightM() < bodies_[i].planet.atmosphere.heightM;
+    skyView.ownSurfacesOnly =
+        bodies_.size() == 1 && !bodies_[i].rings && skyView.highestSurfaceM < bodies_[i].planet.atmosphere.heightM;
     skyView.viewProjection = projection * viewMatrix(planetToLocal * t.camera.forward, planetToLocal * t.camera.up);
     skyView.localToPlanet = bodyFrame.viewOrientation.localToPlanet;
     skyView.forward = planetToLocal * t.camera.forward;
