@@ -90,7 +90,8 @@ void main() {
         float opacity = 1.0f - transmittance.y;
         for (; byOpacity && level < kAerialSize && float(level) / float(kAerialSize) <= opacity; ++level) {
           float w = (float(level) / float(kAerialSize) - lastOpacity) / max(opacity - lastOpacity, 1.0e-7f);
-          imageStore(aerialLight, ivec3(column, level), vec4(mix(lastTotal, total, clamp(w, 0.0f, 1.0f)), 0.0f));
+          imageStore(aerialLight, ivec3(column, level),
+                     vec4(mix(lastTotal, total, clamp(w, 0.0f, 1.0f)) * kSkyHalfLightScale, 0.0f));
         }
         lastTotal = total;
         lastOpacity = opacity;
@@ -98,7 +99,8 @@ void main() {
       done = target;
     }
     imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(-log(max(transmittance, vec3(1.0e-30f))), 0.0f));
-    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), vec4(total, 0.0f));
+    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), vec4(total * kSkyHalfLightScale, 0.0f));
   }
-  for (; byOpacity && level <= kAerialSize; ++level) imageStore(aerialLight, ivec3(column, level), vec4(total, 0.0f));
+  for (; byOpacity && level <= kAerialSize; ++level)
+    imageStore(aerialLight, ivec3(column, level), vec4(total * kSkyHalfLightScale, 0.0f));
 }

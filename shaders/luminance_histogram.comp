@@ -1,10 +1,11 @@
 #version 450
 // Eye adaptation, first dispatch (issue 21, point 4): the luminance histogram of the composed
 // HDR frame at half resolution: each invocation takes the mean luminance of a 2 × 2 block of
-// pixels (a star or a glint still counts, at a quarter of its pixel's value), which quarters
-// the atomic adds that dominate this pass on a CPU device. Each 16 × 16 group counts its blocks
-// into a histogram in shared memory, then adds its non-empty bins to the frame's. Integer counts: the result does not depend on the order
-// the groups run in, so the same frame always gives the same histogram.
+// pixels (a glint still counts, at a quarter of its pixel's value; the stars do not: the compose
+// left their luminance in alpha), which quarters the atomic adds that dominate this pass on a CPU
+// device. Each 16 × 16 group counts its blocks into a histogram in shared memory, then adds its
+// non-empty bins to the frame's. Integer counts: the result does not depend on the order the
+// groups run in, so the same frame always gives the same histogram.
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/definitions.glsl"
@@ -13,7 +14,7 @@
 
 layout(local_size_x = kExposureWorkgroupSize, local_size_y = kExposureWorkgroupSize) in;
 
-layout(set = 0, binding = kExposureBindingColor, rgba16f) uniform readonly image2D color;
+layout(set = 0, binding = kExposureBindingColor, rgba32f) uniform readonly image2D color;
 layout(set = 0, binding = kExposureBindingHistogram, std430) buffer Histogram { uint counts[]; };
 layout(push_constant) uniform Push { ExposurePush push; };
 
@@ -32,8 +33,8 @@ void main() {
       for (int dx = 0; dx < 2; ++dx) {
         ivec2 pixel = block + ivec2(dx, dy);
         if (pixel.x < size.x && pixel.y < size.y) {
-          vec3 c = imageLoad(color, pixel).rgb;
-          sum += exposureLuminance(c.r, c.g, c.b);
+          vec4 c = imageLoad(color, pixel);
+          sum += exposureSceneLuminance(c.r, c.g, c.b, c.a);
           count += 1.0f;
         }
       }

@@ -21,6 +21,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
+#include "shared/exposure_params.h"
 #include "shared/star_params.h"
 #include "common/star_visibility.glsl"
 
@@ -71,6 +72,7 @@ void upsampledClouds(ivec2 pixel, ViewRay ray, bool clear, out vec3 composite, o
     ivec2 offset = ivec2(k & 1, k >> 1);
     ivec2 cell = clamp(ivec2(base) + offset, ivec2(0), last);
     light[k] = clear ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : imageLoad(cloudSampleLight, cell);
+    light[k].rgb *= 1.0f / kSkyHalfLightScale;
     end[k] = imageLoad(cloudSampleEnd, cell);  // x: distance to the drawn surface, y: layer path, z: shadow
     bilinear[k] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
     float path = clear ? 0.0f : end[k].y;
@@ -258,6 +260,8 @@ void main() {
   if (seesGround && !geometry) transmittance = vec3(0.0f);
 
   vec3 result;
+  float starLuminance = 0.0f;  // of the stars' light in `result`
+  float starFlux = -stored.a;  // on the background: the stars' relative flux (stars.frag)
   if (geometry) {
     result = surface * transmittance + inscatter;
   } else {
@@ -265,8 +269,9 @@ void main() {
     // would lose it against the sky in front: its magnitude (the relative flux stars.frag left in
     // alpha, through the air's transmittance) against the sky's radiance. A pixel with no star
     // (another body's air seen past this one's) keeps its light.
-    float starFade = stored.a > 0.0f ? starVisibleShare(stored.a * luminance(transmittance), luminance(inscatter)) : 1.0f;
+    float starFade = starFlux > 0.0f ? starVisibleShare(starFlux * luminance(transmittance), luminance(inscatter)) : 1.0f;
     result = surface * transmittance * starFade + inscatter;
+    if (starFlux > 0.0f) starLuminance = luminance(surface * transmittance * starFade);
     if (!seesGround && sky.extent.w > 0.5f) {
       float sunRadius = a.radii.z;
       float cosRadius = cos(sunRadius);
@@ -277,7 +282,14 @@ void main() {
   }
   // Keep the target finite whatever the inputs (a NaN would spread through the tonemap).
   result = clamp(result, vec3(0.0f), vec3(6.0e4f));
-  // Alpha: 1 on geometry; the stars' relative flux kept on the background, for the compose of a
-  // nearer body's air, which fades them against its own sky.
-  imageStore(color, pixel, vec4(result, geometry ? 1.0f : stored.a));
+  // Alpha: from the frame's last compose (the camera's body's, which draws the sun), the mark of
+  // a composed pixel plus the stars' share of its light, which auto exposure neither measures
+  // nor applies (shared/exposure_params.h). From a farther body's: 1 on geometry, the stars'
+  // negated relative flux kept on the background, for the compose of a nearer body's air, which
+  // fades them against its own sky.
+  bool lastCompose = sky.extent.w > 0.5f;
+  float total = luminance(result);
+  float starShare = total > 0.0f ? clamp(starLuminance / total, 0.0f, 1.0f) : 0.0f;
+  float alpha = lastCompose ? kExposureComposedAlpha + starShare : geometry ? 1.0f : stored.a;
+  imageStore(color, pixel, vec4(result, alpha));
 }

@@ -74,7 +74,7 @@ void main() {
     aerialPerspective(uv, tCloud, ray.dir.z, columnStretch, frontLight, frontTransmittance);
     composite = (1.0f - transmittance) * frontLight + frontTransmittance * light;
   }
-  imageStore(cloudSampleLight, cell, vec4(composite, transmittance));
+  imageStore(cloudSampleLight, cell, vec4(composite * kSkyHalfLightScale, transmittance));
   // (A ray that ends before the layer has no path through it before its end.)
   float path = kSpecCloudTileClass == kSkyCloudTileMarch ? layerPathBefore(ray.dir, ray.tEnd) : 0.0f;
   imageStore(cloudSampleEnd, cell, vec4(ray.tGeometry, path, cloudShadow(ray), 0.0f));

@@ -13,7 +13,7 @@ layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 
 // SkyUniforms has only vec4 and mat4 members, so std140 lays it out as C++ does.
 #include "sky_uniforms.glsl"
-layout(set = 0, binding = kSkyBindingColor, rgba16f) uniform image2D color;
+layout(set = 0, binding = kSkyBindingColor, rgba32f) uniform image2D color;
 layout(set = 0, binding = kSkyBindingDepth) uniform sampler2D depthBuffer;
 layout(set = 0, binding = kSkyBindingTransmittance) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = kSkyBindingClouds) uniform samplerCube cloudCover;
@@ -213,7 +213,7 @@ void aerialPerspective(vec2 uv, float t, float mu, vec2 columnStretch, out vec3 
   }
   float level = (1.0f - transmittance.y) * float(kAerialSize);
   vec3 byLevel = vec3(uv, (level + 0.5f) / float(kAerialSize + 1u));
-  light = textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f).rgb;
+  light = textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f).rgb * (1.0f / kSkyHalfLightScale);
 }
 
 // The depths of the 2×2 pixels from `pixel` (one gather, in its component order: x (+0, +1),

@@ -13,7 +13,7 @@ layout(local_size_x = kSkyWorkgroupSize, local_size_y = kSkyWorkgroupSize) in;
 #include "sky_uniforms.glsl"
 layout(set = 0, binding = kSkyTableBindingTransmittance) uniform sampler2D transmittanceTable;
 layout(set = 0, binding = kSkyTableBindingMultipleScattering) uniform sampler2D multipleScatteringTable;
-layout(set = 0, binding = kSkyTableBindingSkyView, rgba16f) uniform writeonly image2D skyView;
+layout(set = 0, binding = kSkyTableBindingSkyView, rgba32f) uniform writeonly image2D skyView;
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb

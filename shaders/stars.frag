@@ -2,10 +2,11 @@
 // A star's sprite: each pixel gets the part of the star's Gaussian image that falls on its
 // square (the Gaussian integrated over the pixel, separably in x and y), added (blend ONE, ONE)
 // to the HDR colour target, so the pixels of a star add up to its flux wherever it lies between
-// pixel centres. Alpha gets the star's relative flux 10^(−0.4 m) at each of its pixels (added up
-// where stars overlap; the target is cleared to 0): the sky's compose fades each star by its
-// magnitude against the sky in front of it (common/star_visibility.glsl), and nothing else reads
-// the alpha of a pixel that no geometry covers.
+// pixel centres. Alpha gets the star's relative flux 10^(−0.4 m), negated, at each of its pixels
+// (added up where stars overlap; the target is cleared to 0): the sky's compose fades each star
+// by its magnitude against the sky in front of it (common/star_visibility.glsl), and the sign
+// tells the stars' light from geometry's (alpha 0 .. 1) to auto exposure where no compose runs
+// (shared/exposure_params.h).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/star_params.h"
@@ -39,5 +40,5 @@ void main() {
     vec2 d = (gl_PointCoord - vec2(0.5f)) * inSize;
     w = pixelShare(d.x, inSigma) * pixelShare(d.y, inSigma);
   }
-  outColor = vec4(inFlux * w, inRelativeFlux);
+  outColor = vec4(inFlux * w, -inRelativeFlux);
 }

@@ -21,7 +21,7 @@ layout(set = 0, binding = kRenderBindingNormalHeight, rgba32f) uniform readonly 
 layout(set = 0, binding = kRenderBindingToCameraPixel, rgba32f) uniform readonly image2D gToCameraPixel;
 layout(set = 0, binding = kRenderBindingUpJitter, rgba32f) uniform readonly image2D gUpJitter;
 layout(set = 0, binding = kRenderBindingLatitudeFootprint, rgba32f) uniform readonly image2D gLatitudeFootprint;
-layout(set = 0, binding = kRenderBindingShadedColor, rgba16f) uniform writeonly image2D color;
+layout(set = 0, binding = kRenderBindingShadedColor, rgba32f) uniform writeonly image2D color;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -1,12 +1,16 @@
 #version 450
 // HDR → display (issue 4, point 2): exposure, then Narkowicz's fit of the ACES filmic curve
 // (2015); the sRGB target encodes the result. The exposure is the fixed one (params.x), or with
-// eye adaptation (issue 21, point 4; params.y = 1) the one the luminance pass wrote this frame.
+// eye adaptation (issue 21, point 4; params.y = 1) the one the luminance pass wrote this frame,
+// and then the stars' share of each pixel (from its alpha: shared/exposure_params.h) takes
+// kExposureStarExposure instead (the pixel's colour stands for the stars' in it).
 #extension GL_GOOGLE_include_directive : require
 
+#include "common/definitions.glsl"
 #include "shared/exposure_params.h"
+#include "common/exposure.glsl"
 
-layout(set = 0, binding = 0, rgba16f) uniform readonly image2D hdr;
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D hdr;
 layout(set = 0, binding = 1, std430) readonly buffer Exposure { ExposureState exposure; };
 layout(push_constant) uniform Push { vec4 params; };  // x: fixed exposure (1 with adaptation), y: 1 to adapt
 
@@ -15,7 +19,10 @@ layout(location = 0) out vec4 outColor;
 vec3 filmic(vec3 x) { return clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f); }
 
 void main() {
-  vec3 c = imageLoad(hdr, ivec2(gl_FragCoord.xy)).rgb;
-  float scale = params.x * mix(1.0f, exposure.values.x, params.y);
-  outColor = vec4(filmic(c * scale), 1.0f);
+  vec4 c = imageLoad(hdr, ivec2(gl_FragCoord.xy));
+  float scale = params.x;
+  if (params.y > 0.5f) {
+    scale = mix(exposure.values.x, kExposureStarExposure, exposureStarShare(c.a));
+  }
+  outColor = vec4(filmic(c.rgb * scale), 1.0f);
 }

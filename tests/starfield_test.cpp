@@ -239,9 +239,10 @@ TEST_F(StarfieldGpu, StarsAloneLookLikeAStarrySky) {
   std::vector<double> litValues;
   for (const glm::vec4& p : frame.pixels) {
     for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(p[c])) << "NaN or Inf in the HDR target";
-    // Alpha gets each star's relative flux 10^(−0.4 m) at its pixels (for the sky's fade).
-    ASSERT_GE(p.a, 1.0f) << "a star lowered alpha";
-    starAlpha = std::max(starAlpha, double(p.a) - 1.0);
+    // Alpha gets each star's relative flux 10^(−0.4 m), negated, at its pixels (for the sky's
+    // fade; the sign tells stars from geometry to auto exposure).
+    ASSERT_LE(p.a, 1.0f) << "a star raised alpha";
+    starAlpha = std::max(starAlpha, 1.0 - double(p.a));
     const double l = luminance(p);
     ASSERT_GE(l, 0.0);
     light += l;
@@ -269,7 +270,7 @@ TEST_F(StarfieldGpu, StarsAloneLookLikeAStarrySky) {
   EXPECT_NEAR(light / expectedLight, 1.0, 0.03);
   // A few bright stars among many faint ones.
   EXPECT_GT(brightest, 50.0 * medianLit);
-  // The brightest star's relative flux in alpha (more where a sprite overlaps another's).
+  // The brightest star's relative flux taken from alpha (more where a sprite overlaps another's).
   const double brightestFlux = std::pow(10.0, -0.4 * brightestVisible);
   EXPECT_GE(starAlpha, 0.99 * brightestFlux);
   EXPECT_LT(starAlpha, 1.5 * brightestFlux);

@@ -3,8 +3,9 @@
 #   - seed 002's Figures 5.1-5.4 equivalents: one fBm, cascade, hybrid and ridged planet each,
 #     shaded by height only (tools/gallery/*.toml), from orbit and from 600 km;
 #   - a descent on the default planet: orbit -> 100 km -> 10 km -> 1 km -> 2 m, at noon, at
-#     sunset and at night (sky, clouds, water and stars: issue 4), the first four beside the same
-#     views of the earth preset before issue 10;
+#     sunset, at dusk and at the end of nautical twilight (sky, clouds, water and stars: issue 4;
+#     the last two at auto exposure, issue 21), the first four beside the same views of the earth
+#     preset before issue 10;
 #   - the moon and mars presets from the ground, the moon from orbit;
 #   - the system (issue 8) and its eclipses (issue 23);
 #   - earth's city lights at night from orbit, at dusk, and from 30 km;
@@ -44,7 +45,8 @@ render descent_5_2m --camera 45.3,83.0,0,90,-2 --sun 150,35
 render descent_6_2m_sunset --camera 45.3,83.0,0,90,0 --sun 270,3
 render sea_2m_noon --camera 20,-30,2,90,5 --sun 135,50
 render sea_2m_sunset --camera 20,-30,2,135,3 --sun 135,1
-render night_2m --camera 45.3,83.0,0,270,25 --sun 275,-12
+render dusk_2m --camera 45.3,83.0,0,0,4 --sun 30,-9 --exposure auto
+render night_2m --camera 45.3,83.0,0,0,4 --sun 30,-12 --exposure auto
 render moon_orbit --preset moon --camera -20,40,4e6 --sun 100,40
 render moon_ground --preset moon --camera -20,40,2,0,-15 --sun 100,12
 render mars_ground --preset mars --camera -5,140,2,60,5 --sun 100,30

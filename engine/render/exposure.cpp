@@ -37,7 +37,7 @@ ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t wid
       for (uint32_t y = by; y < std::min(by + 2, height); ++y)
         for (uint32_t x = bx; x < std::min(bx + 2, width); ++x) {
           const glm::vec4& c = hdr[size_t(y) * width + x];
-          sum += kernel.exposureLuminance(c.r, c.g, c.b);
+          sum += kernel.exposureSceneLuminance(c.r, c.g, c.b, c.a);
           count += 1.0f;
         }
       ++histogram[kernel.exposureBin(sum / count)];

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
-#include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
 #include "planet/terrain_height.h"
@@ -25,7 +25,9 @@
 namespace planet {
 namespace {
 
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // linear radiance, composed in place
+// Linear radiance, composed in place. Float, not half: a sky 10° past sunset is 4e-8 of the sun's
+// irradiance, below half's smallest subnormal (6e-8), and auto exposure brings it into view.
+constexpr VkFormat kHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;      // the tonemapped frame, sRGB-encoded on store
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;         // reversed Z needs float depth
 
@@ -136,6 +138,10 @@ Renderer::~Renderer() = default;
 
 void Renderer::createTargets() {
   const VkExtent2D extent{settings_.width, settings_.height};
+  vk::requireFormatFeatures(context_, kHdrFormat,
+                            VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
+                                VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
+                            "the HDR frame (drawn with blending, composed in place)");
   hdr_ = {context_, vk::createImage2D(context_, extent, kHdrFormat,
                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT)};
   color_ = {context_, vk::createImage2D(context_, extent, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT)};
@@ -683,11 +689,9 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr, doubl
 }
 
 std::vector<glm::vec4> Renderer::readHdrImage() {
-  std::vector<uint8_t> bytes = vk::readbackImage(context_, *hdr_);
-  std::vector<glm::vec4> texels(size_t(settings_.width) * settings_.height);
-  const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
-  for (size_t i = 0; i < texels.size(); ++i)
-    for (int c = 0; c < 4; ++c) texels[i][c] = glm::unpackHalf1x16(halves[4 * i + size_t(c)]);
+  const std::vector<float> values = vk::readbackRgbaFloat(context_, *hdr_);
+  std::vector<glm::vec4> texels(values.size() / 4);
+  std::memcpy(texels.data(), values.data(), values.size() * sizeof(float));
   return texels;
 }
 

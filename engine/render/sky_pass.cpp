@@ -5,8 +5,6 @@
 #include <cstring>
 #include <numbers>
 
-#include <glm/gtc/packing.hpp>
-
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -57,11 +55,15 @@ constexpr VkDescriptorType kTableBindings[] = {
 };
 
 // The cloud pass's images (shaders/shared/sky_params.h, kSkyBindingCloudLight and kSkyBindingCloudEnd):
-// distances need float's range and precision, light and transmittance do with half floats.
+// distances need float's range and precision; light and transmittance do with half floats, the
+// light scaled by gpu::kSkyHalfLightScale (deep twilight's is below a half float's normals).
 constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-constexpr VkFormat kTableFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The sky-view table holds radiance in float (192 × 108 texels: the format's cost does not show);
+// the aerial volume does with half floats, its light scaled by gpu::kSkyHalfLightScale.
+constexpr VkFormat kTableFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kAerialFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
@@ -153,6 +155,10 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
     : context_(context), planet_(planet), tables_(tables), settings_(settings) {
   specialization_[0][0] = specialization_[1][0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
+  vk::requireFormatFeatures(context, kTableFormat,
+                            VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+                            "the sky-view table (written, then filtered)");
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
     uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                           vk::MemoryUsage::Upload)};
@@ -169,9 +175,9 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   // The aerial-perspective volume: the camera's slice (no air) and kAerialSize more
   // (shaders/aerial_perspective.comp), 3D so that the compose filters between slices in one read.
   aerialLight_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize}, gpu::kAerialSize + 1,
-                                             kTableFormat, kTableUsage)};
+                                             kAerialFormat, kTableUsage)};
   aerialTransmittance_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize},
-                                                     gpu::kAerialSize + 1, kTableFormat, kTableUsage)};
+                                                     gpu::kAerialSize + 1, kAerialFormat, kTableUsage)};
   tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
   tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
@@ -541,11 +547,9 @@ std::array<uint32_t, gpu::kSkyTileLists> SkyPass::readTileCounts() {
 }
 
 std::vector<glm::vec4> SkyPass::readSkyView() {
-  std::vector<uint8_t> bytes = vk::readbackImage(context_, *skyView_);
-  std::vector<glm::vec4> texels(size_t(gpu::kSkyViewWidth) * gpu::kSkyViewHeight);
-  const uint16_t* halves = reinterpret_cast<const uint16_t*>(bytes.data());
-  for (size_t i = 0; i < texels.size(); ++i)
-    for (int c = 0; c < 4; ++c) texels[i][c] = glm::unpackHalf1x16(halves[4 * i + size_t(c)]);
+  const std::vector<float> values = vk::readbackRgbaFloat(context_, *skyView_);
+  std::vector<glm::vec4> texels(values.size() / 4);
+  std::memcpy(texels.data(), values.data(), values.size() * sizeof(float));
   // Back to what the builds and the compose expect.
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
     vk::transitionImage(cmd, *skyView_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,

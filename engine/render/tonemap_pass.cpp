@@ -46,7 +46,8 @@ void TonemapPass::recordDraw(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (timer) timer->begin(cmd, "tonemap");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_, 0, nullptr);
-  // A fixed exposure scales by params.x; an adapted one by the buffer's (params.x = 1).
+  // A fixed exposure scales by params.x; an adapted one (params.y = 1) by the buffer's, the stars'
+  // share of a pixel by gpu::kExposureStarExposure.
   const glm::vec4 params(adapting_ ? 1.0f : float(exposure_), adapting_ ? 1.0f : 0.0f, 0.0f, 0.0f);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(params), &params);
   vkCmdDraw(cmd, 3, 1, 0, 0);

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
 #include "core/error.h"
 #include "vk/buffer.h"
 #include "vk/commands.h"
@@ -11,6 +13,15 @@
 #include "vk/owned.h"
 
 namespace planet::vk {
+
+void requireFormatFeatures(const Context& context, VkFormat format, VkFormatFeatureFlags needed, const char* purpose) {
+  VkFormatProperties properties{};
+  vkGetPhysicalDeviceFormatProperties(context.physicalDevice, format, &properties);
+  if ((properties.optimalTilingFeatures & needed) != needed)
+    throw Error("device '" + context.info.name + "' lacks format features " + std::to_string(needed) + " of format " +
+                std::to_string(int(format)) + " (it has " + std::to_string(properties.optimalTilingFeatures) +
+                "), which " + purpose + " needs");
+}
 
 uint32_t formatTexelSize(VkFormat format) {
   switch (format) {
@@ -227,6 +238,23 @@ std::vector<uint8_t> readbackImage(Context& context, Image& image) {
   context.allocator.invalidate(staging->allocation);
   std::memcpy(texels.data(), staging->mapped(), bytes);
   return texels;
+}
+
+std::vector<float> readbackRgbaFloat(Context& context, Image& image) {
+  if (image.format != VK_FORMAT_R16G16B16A16_SFLOAT && image.format != VK_FORMAT_R32G32B32A32_SFLOAT)
+    throw Error("readbackRgbaFloat: image format " + std::to_string(int(image.format)) + " is not RGBA float");
+  const std::vector<uint8_t> bytes = readbackImage(context, image);
+  std::vector<float> values(bytes.size() / formatTexelSize(image.format) * 4);
+  if (image.format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+    std::memcpy(values.data(), bytes.data(), bytes.size());
+  } else {
+    for (size_t i = 0; i < values.size(); ++i) {
+      uint16_t half = 0;
+      std::memcpy(&half, bytes.data() + 2 * i, 2);
+      values[i] = glm::unpackHalf1x16(half);
+    }
+  }
+  return values;
 }
 
 }  // namespace planet::vk

@@ -25,6 +25,10 @@ struct Image {
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // as left by the helpers below
 };
 
+// Throws, naming the device, the format and `purpose`, unless the device supports `needed` for
+// `format` in optimal tiling.
+void requireFormatFeatures(const Context& context, VkFormat format, VkFormatFeatureFlags needed, const char* purpose);
+
 // Bytes per texel of the colour formats the engine uses; throws for others.
 uint32_t formatTexelSize(VkFormat format);
 
@@ -66,5 +70,8 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
 
 // Reads every texel back, tightly packed, and leaves the image in TRANSFER_SRC_OPTIMAL (blocking).
 std::vector<uint8_t> readbackImage(Context& context, Image& image);
+// The texels of an RGBA float image (R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT) as floats, four
+// a texel; throws for other formats.
+std::vector<float> readbackRgbaFloat(Context& context, Image& image);
 
 }  // namespace planet::vk

@@ -10,6 +10,18 @@
 // Rec. 709 luminance of linear RGB (the HDR target's primaries).
 real exposureLuminance(real r, real g, real b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
 
+// The share of a pixel's light that is the stars', from the HDR frame's alpha (shared/
+// exposure_params.h says how it is written).
+real exposureStarShare(real alpha) {
+  if (alpha < 0.0f) return 1.0f;
+  return alpha >= kExposureComposedAlpha ? min(alpha - kExposureComposedAlpha, 1.0f) : 0.0f;
+}
+
+// The luminance the exposure is measured on: the pixel's, less the stars' share of it.
+real exposureSceneLuminance(real r, real g, real b, real alpha) {
+  return exposureLuminance(r, g, b) * (1.0f - exposureStarShare(alpha));
+}
+
 // The histogram bin of a luminance: 0 below 2^kExposureMinLog2 (and for NaN), then
 // kExposureBinsPerStop bins a stop, the last one open above.
 uint exposureBin(real luminance) {
@@ -34,9 +46,16 @@ void exposureAccumulate(uint bin, real count, real low, real high, INOUT(real) b
   below += count;
 }
 
-// The exposure that maps the measured luminance 2^log2Luminance to the key, within the clamps.
+// log2 of the key for a measured luminance 2^log2Luminance (the frame's units): kExposureKey from
+// kExposureFullKeyCdM2 up, kExposureKeySlope of a stop lower for each stop below.
+real exposureKeyLog2(real log2Luminance) {
+  real stopsBelow = max(log2(kExposureFullKeyCdM2 / kExposureSunCdM2) - log2Luminance, 0.0f);
+  return log2(kExposureKey) - kExposureKeySlope * stopsBelow;
+}
+
+// The exposure that maps the measured luminance 2^log2Luminance to its key, within the clamps.
 real exposureForLuminance(real log2Luminance) {
-  return clamp(exp2(log2(kExposureKey) - log2Luminance), kExposureMin, kExposureMax);
+  return clamp(exp2(exposureKeyLog2(log2Luminance) - log2Luminance), kExposureMin, kExposureMax);
 }
 
 // The viewer's adaptation: after `stepS` seconds the exposure has moved from `current` toward

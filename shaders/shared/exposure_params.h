@@ -14,7 +14,9 @@ GPU_NAMESPACE_BEGIN
 // above (the sun's disc).
 GPU_CONST uint kExposureBins = 256u;
 GPU_CONST float kExposureBinsPerStop = 8.0f;
-GPU_CONST float kExposureMinLog2 = -20.0f;    // 1e-6 of the sun's irradiance: darker is black on any exposure
+// 2^−32 of the sun's irradiance (3e-5 cd/m², a tenth of the natural night sky's): darker is black on any
+// exposure. The last bin opens at 2^0: the sun's disc and glints.
+GPU_CONST float kExposureMinLog2 = -32.0f;
 GPU_CONST uint kExposureWorkgroupSize = 16u;  // 16 × 16 blocks of 2 × 2 pixels per histogram group
 
 // The part of the frame the exposure is measured on: black pixels (bin 0: space, the night sky
@@ -25,19 +27,41 @@ GPU_CONST uint kExposureWorkgroupSize = 16u;  // 16 × 16 blocks of 2 × 2 pixel
 GPU_CONST float kExposureLowFraction = 0.5f;
 GPU_CONST float kExposureHighFraction = 0.98f;
 // Target: the measured log-average luminance maps to this value before the curve (the tonemap's
-// mid-grey: 0.18 through the filmic curve is 0.27 linear, 0.55 sRGB).
+// mid-grey: 0.18 through the filmic curve is 0.27 linear, 0.55 sRGB) in daylight, from
+// kExposureFullKeyCdM2 up. Below, the key falls kExposureKeySlope of a stop for each stop the scene
+// is darker, as the eye and a photograph keep a dark scene dark: the sky at the end of civil
+// twilight (about 1 cd/m²) 0.6 of a stop lower on the display each stop, reaching black at the
+// natural night sky (2e-4 cd/m²; README.md, "Exposure", has the figures).
 GPU_CONST float kExposureKey = 0.18f;
+GPU_CONST float kExposureFullKeyCdM2 = 1000.0f;
+GPU_CONST float kExposureKeySlope = 0.25f;
+// The frame's unit in cd/m²: HDR radiance 1 (per steradian, for the sun's irradiance above the
+// air of 1) is the sun's illuminance, 1.28e5 lux, spread over a steradian.
+GPU_CONST float kExposureSunCdM2 = 1.28e5f;
 // Clamps on the exposure: the smallest keeps a bright scene (snow at noon) from turning dim; the
-// largest keeps a night from being lifted into grey (README.md, "Exposure").
+// largest, 2^21, is where the key meets the natural night sky's luminance (2e-4 cd/m²), which this
+// model's air has not got (airglow, zodiacal light): a darker frame is not lifted further, and a
+// frame with nothing lit takes it.
 GPU_CONST float kExposureMin = 1.0f;
-GPU_CONST float kExposureMax = 64.0f;
+GPU_CONST float kExposureMax = 2097152.0f;
+// Stars under auto exposure are shown as at exposure 64, whatever the frame's: their drawn flux is
+// far above a real star's (so that one shows on a pixel), and a star the eye sees at all
+// (common/star_visibility.glsl decides which) is a point of light whatever it has adapted to.
+// The HDR frame's alpha tells the measurement and the tonemap which share of a pixel's light is
+// the stars' (exposureStarShare): a pixel the last compose wrote holds kExposureComposedAlpha + that
+// share; one it did not (outside its region: no air there) holds what was drawn, the stars'
+// negated relative flux (stars.frag; all of its light is theirs) or 0 .. 1 on geometry (none).
+// A ring drawn after it (the camera's body's, premultiplied over: α + dst α (1 − α)) leaves
+// 1 .. 2 where it covers much: the stars seen through it take the frame's exposure.
+GPU_CONST float kExposureStarExposure = 64.0f;
+GPU_CONST float kExposureComposedAlpha = 2.0f;
 // Adaptation time constants of the viewer (seconds): the exposure rises (toward a darker scene)
 // slower than it falls (toward a brighter one), as the eye's does.
 GPU_CONST float kExposureRiseTimeS = 1.5f;
 GPU_CONST float kExposureFallTimeS = 0.4f;
 
 // Bindings of both dispatches (set 0).
-GPU_CONST uint kExposureBindingColor = 0u;      // image2D rgba16f: the composed HDR frame (read)
+GPU_CONST uint kExposureBindingColor = 0u;      // image2D rgba32f: the composed HDR frame (read)
 GPU_CONST uint kExposureBindingHistogram = 1u;  // uint[kExposureBins]: pixel counts
 GPU_CONST uint kExposureBindingState = 2u;      // ExposureState: the exposure the tonemap applies, carried over frames
 GPU_CONST uint kExposureBindingReport = 3u;     // ExposureState: a copy per frame slot, read by the host

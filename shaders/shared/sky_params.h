@@ -18,7 +18,7 @@ GPU_CONST uint kSkyWorkgroupSize = 8u;      // 8×8 invocations per group (compo
 
 // Bindings of the sky compose pass (set 0).
 GPU_CONST uint kSkyBindingUniforms = 0u;             // uniform SkyUniforms (sky_uniforms.glsl)
-GPU_CONST uint kSkyBindingColor = 1u;                // image2D rgba16f: the HDR frame, read and written in place
+GPU_CONST uint kSkyBindingColor = 1u;                // image2D rgba32f: the HDR frame, read and written in place
 GPU_CONST uint kSkyBindingDepth = 2u;                // sampler2D: the frame's reversed-Z depth
 GPU_CONST uint kSkyBindingTransmittance = 3u;        // sampler2D: the transmittance table
 GPU_CONST uint kSkyBindingClouds = 4u;               // samplerCube: the three cloud cover images (rgb)
@@ -29,7 +29,11 @@ GPU_CONST uint kSkyBindingAerialTransmittance = 8u;  // sampler3D: optical depth
 // The cloud pass's results (sky_clouds.comp writes one texel per SkyUniforms::cloudShape.w² pixels from the top
 // left corner, sky.comp reads them):
 GPU_CONST uint kSkyBindingCloudLight = 9u;  // image2D rgba16f: rgb the cloud's light composited with the air in front
-                                            // of it, a its transmittance
+                                            // of it (times kSkyHalfLightScale), a its transmittance
+// Light held in half floats (the cloud light, the aerial volume's) is stored times this, so that
+// deep twilight's (10⁻⁸ of the sun's irradiance, below a half float's smallest normal, 6·10⁻⁵)
+// keeps its precision; light up to 16 fits.
+GPU_CONST float kSkyHalfLightScale = 4096.0f;
 GPU_CONST uint kSkyBindingCloudEnd = 10u;   // image2D rgba32f: x the distance to the drawn surface (kInfinity: none),
                                             // y the ray's path through the layer before its end, z the shadow there
 // The compose's and the cloud pass's tiles (one workgroup each) by what their pixels need
@@ -67,14 +71,15 @@ GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic 
 // slices along its ray in two rgba16f 3D images: the air's optical depth τ = −ln T from the camera
 // to each slice's far end (the first the camera's, 0), and the light scattered toward the camera
 // where the column's opacity 1 − T (green) reaches j / kAerialSize (from above the air: at the
-// slices' ends; sky_compose.glsl, aerialPerspective, says why).
+// slices' ends; sky_compose.glsl, aerialPerspective, says why). The light is stored times
+// kSkyHalfLightScale, as the cloud light is.
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
 // Bindings of the per-frame table builds (set 0).
 GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (uniform buffer: sky_uniforms.glsl)
 GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D
 GPU_CONST uint kSkyTableBindingMultipleScattering = 2u;   // sampler2D
-GPU_CONST uint kSkyTableBindingSkyView = 3u;              // image2D rgba16f, written
+GPU_CONST uint kSkyTableBindingSkyView = 3u;              // image2D rgba32f, written
 GPU_CONST uint kSkyTableBindingAerialLight = 4u;          // image3D rgba16f, written
 GPU_CONST uint kSkyTableBindingAerialTransmittance = 5u;  // image3D rgba16f, written
 
@@ -131,7 +136,8 @@ struct SkyUniforms {
                        // crossing of the layer, w: pixels per sample of the cloud pass along each axis (1 or 2)
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
-  vec4 extent;         // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 to draw the sun's disc
+  vec4 extent;  // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 in the frame's last compose (the
+                // camera's body's): draws the sun's disc, leaves the stars' luminance in alpha
   vec4 surface;  // x: lowest surface (m above R: the sea level with a sea, else the deepest terrain), y: 1 with a sea,
                  // z: the ground sphere (m above R) a ray that met no geometry ends on, w: unused
   vec4 aerial;   // slices of the aerial-perspective volume: x: 1 when the camera is above the top of the
