@@ -34,4 +34,23 @@ vec2 skyViewUv(float theta, vec2 range, vec3 viewFlat, vec3 sunFlat) {
   return vec2(unitToTexel(acos(cosPhi) / kAtmospherePi, float(kSkyViewWidth)), v);
 }
 
+// The sky irradiance table (reference/atmosphere_model.h: 16 sun zenith cosines muS from −0.2 to
+// 1, 0.08 apart) is read by the terrain, the sea and the clouds, each from its own uniforms:
+// skyIrradianceX is where muS falls in it (in entries from the first, negative below it),
+// skyIrradianceIndex the entry below that, and skyIrradianceBetween the light from that entry
+// and the next. In the first two intervals (the sun 2.3° to 11.5° down) and below the first
+// entry the light falls about two stops a degree, and is interpolated, and extrapolated,
+// geometrically: linearly, the ground got 3 to 23 times its light in deep twilight (as much as
+// the entry above gave it), which auto exposure shows. It fades to none by 18° down, the end of
+// astronomical twilight, where no sunlit air is left in sight.
+float skyIrradianceX(float muS) { return clamp((muS + 0.2f) / 1.2f, -0.1f, 1.0f) * 15.0f; }
+uint skyIrradianceIndex(float x) { return min(uint(max(x, 0.0f)), 14u); }
+vec3 skyIrradianceBetween(vec3 below, vec3 above, float x, uint i, float muS) {
+  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
+  float f = x - float(i);
+  if (i > 1u) return night * mix(below, above, f);
+  vec3 low = log2(max(below, vec3(1.0e-30f))), high = log2(max(above, vec3(1.0e-30f)));
+  return night * exp2(mix(low, high, f));
+}
+
 #endif

@@ -47,13 +47,11 @@ const float kInfinity = 3.0e38f;
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
-// The sky irradiance table at sun zenith cosine muS, fading to none by the end of astronomical
-// twilight below its first entry (as terrain_surface.glsl's).
+// The sky irradiance table at sun zenith cosine muS (atmosphere_lookup.glsl, skyIrradianceBetween).
 vec3 skyIrradianceAt(float muS) {
-  float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * 15.0f;
-  uint i = min(uint(x), 14u);
-  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
-  return night * mix(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x - float(i));
+  float x = skyIrradianceX(muS);
+  uint i = skyIrradianceIndex(x);
+  return skyIrradianceBetween(sky.skyIrradiance[i].rgb, sky.skyIrradiance[i + 1u].rgb, x, i, muS);
 }
 
 // The ray's stretches inside the layer (at most two: a ray from above may dip below its bottom

@@ -136,17 +136,16 @@ void surfaceDetail(vec2 face, vec3 up, vec3 toCamera, vec3 vertexNormal, float v
 
 #endif  // TERRAIN_SURFACE_NO_DERIVATIVES
 
-// Sky irradiance on a horizontal surface for the sun at zenith cosine muS (table on the CPU).
-// The table starts with the sun 11.5° below the horizon (muS −0.2); deeper, it fades linearly to
-// none at 18° below (muS −0.31), the end of astronomical twilight, where no sunlit air is left in
-// sight: held at its first entry, it lit every night side as if at −11.5°.
+// Sky irradiance on a horizontal surface for the sun at zenith cosine muS (table on the CPU;
+// atmosphere_lookup.glsl, skyIrradianceBetween). The table starts with the sun 11.5° below the
+// horizon (muS −0.2); deeper, it falls on to none at 18° below (muS −0.31): held at its first
+// entry, it lit every night side as if at −11.5°.
 vec3 skyIrradianceAt(float muS) {
-  float x = clamp((muS + 0.2f) / 1.2f, 0.0f, 1.0f) * float(kSkyIrradianceSamplesGpu - 1u);
-  uint i = min(uint(x), kSkyIrradianceSamplesGpu - 2u);
-  float night = clamp((muS + 0.309f) / 0.109f, 0.0f, 1.0f);
+  float x = skyIrradianceX(muS);
+  uint i = skyIrradianceIndex(x);
   vec3 below = frameArray(kFrameTexelSkyIrradiance, i).rgb;
   vec3 above = frameArray(kFrameTexelSkyIrradiance, i + 1u).rgb;
-  return night * mix(below, above, x - float(i));
+  return skyIrradianceBetween(below, above, x, i, muS);
 }
 
 // Irradiance from the sun through the air at altitude h with sphere normal `up` (zero on the

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "core/image_file.h"
 #include "gpu_fixture.h"
 #include "planet/planet_description.h"
+#include "reference/atmosphere_model.h"
 #include "render/exposure.h"
 #include "render/luminance_pass.h"
 #include "render/renderer.h"
@@ -339,6 +341,36 @@ TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
       EXPECT_FLOAT_EQ(automatic.exposure->exposure, kExposureMax);
     else
       EXPECT_LT(automatic.exposure->exposure, kExposureMax) << c.name;
+  }
+}
+
+// The ground in deep twilight takes the sky's light of its own sun elevation, which falls about
+// two stops a degree: the mountain valley with the sun 8° and 10° down, its lower third (ground
+// only) against the model's irradiance there, E / π (reference/atmosphere_model.h: what a white
+// horizontal ground would send back). Its median lies between 0.02 and 0.35 of it (the ground's
+// albedo, slopes). Interpolated linearly between the table's entries, 4.6° apart, the ground got
+// 3 and 19 times its light: what the entry above gave it, which auto exposure showed as lit hills
+// under a dark sky.
+TEST_F(ExposureGpu, TwilightGroundTakesTheSkyLightOfItsOwnSunElevation) {
+  const PlanetDescription earth = resolvePreset("earth");
+  RenderSettings settings = smallSettings(false);
+  Renderer renderer(context(), earth, settings);
+  for (double elevationDeg : {-8.0, -10.0}) {
+    const RenderResult frame = renderer.render(kValley, {30.0, elevationDeg}, 0.0, true);
+    std::vector<double> ground;
+    for (uint32_t y = settings.height * 2 / 3; y < settings.height; ++y)
+      for (uint32_t x = 0; x < settings.width; ++x) {
+        const glm::vec4& c = frame.hdr[size_t(y) * settings.width + x];
+        ground.push_back(0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b);
+      }
+    std::nth_element(ground.begin(), ground.begin() + ground.size() / 2, ground.end());
+    const glm::dvec3 irradiance =
+        skyIrradiance(makeAtmosphereParams(earth), std::sin(elevationDeg * std::numbers::pi / 180.0));
+    const double white = (0.2126 * irradiance.r + 0.7152 * irradiance.g + 0.0722 * irradiance.b) / std::numbers::pi;
+    const double ratio = ground[ground.size() / 2] / white;
+    std::printf("sun %.0f°: the ground's median is %.3f of a white ground's light\n", elevationDeg, ratio);
+    EXPECT_GT(ratio, 0.02) << elevationDeg << "°";
+    EXPECT_LT(ratio, 0.35) << elevationDeg << "°";
   }
 }
 
