@@ -3,7 +3,7 @@
 // and the viewer's adaptation step, for tests and for anyone checking a frame's exposure.
 //
 // The method: a histogram of log2 luminance (8 bins a stop) of the composed HDR frame at half
-// resolution (2 × 2 means), less the stars' light (the alpha the last compose leaves); black
+// resolution (2 × 2 means), less the stars' light (the share alpha gives); black
 // pixels (below 2^−32: space, the night sky between the stars) are not measured; of the rest,
 // the mean log2 luminance of those ranked between 50 % and 98 % (the darker half goes: deep
 // shadow; the top 2 %: the sun's disc, glints); the exposure that maps that luminance to the key
@@ -31,8 +31,8 @@ struct ExposureReport {
   double pixels = 0.0;         // pixels it was measured on
 };
 
-// The histogram of a width × height HDR frame (rgb linear, alpha the stars' luminance in it, rows
-// top first), as
+// The histogram of a width × height HDR frame (rgb linear, alpha which share of the light is the
+// stars', shared/exposure_params.h; rows top first), as
 // the GPU bins it: one count per 2 × 2 block of pixels (their mean luminance; the blocks at the
 // right and bottom edges of an odd size hold the pixels inside the frame).
 ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height);

@@ -34,14 +34,11 @@ ReliefCube::ReliefCube(vk::Context& context, const PlanetGpuData& data, uint32_t
   if (!standIn && (size < kReliefMinSize || size > kReliefMaxSize || size % gpu::kReliefWorkgroupSize != 0))
     throw Error(fmt::format("relief cube size {} is not a multiple of {} in {}..{}", size, gpu::kReliefWorkgroupSize,
                             kReliefMinSize, kReliefMaxSize));
-  VkFormatProperties properties{};
-  vkGetPhysicalDeviceFormatProperties(context.physicalDevice, kReliefFormat, &properties);
-  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
-                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
-                                      VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT;
-  if ((properties.optimalTilingFeatures & needed) != needed)
-    throw Error(fmt::format("device '{}' cannot store, filter and blit R16G16B16A16_SFLOAT images (optimal tiling)",
-                            context.info.name));
+  vk::requireFormatFeatures(context, kReliefFormat,
+                            VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                VK_FORMAT_FEATURE_BLIT_DST_BIT,
+                            "the relief cube (stored, filtered, its mips blitted)");
   image_ = {context, vk::createImageCube(context, size, kReliefFormat,
                                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, uint32_t(std::bit_width(size)))};
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

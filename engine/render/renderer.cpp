@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -688,11 +687,6 @@ RenderResult Renderer::finishFrame(const Prepared& prepared, bool readHdr, doubl
   return result;
 }
 
-std::vector<glm::vec4> Renderer::readHdrImage() {
-  const std::vector<float> values = vk::readbackRgbaFloat(context_, *hdr_);
-  std::vector<glm::vec4> texels(values.size() / 4);
-  std::memcpy(texels.data(), values.data(), values.size() * sizeof(float));
-  return texels;
-}
+std::vector<glm::vec4> Renderer::readHdrImage() { return vk::readbackRgbaFloat(context_, *hdr_); }
 
 }  // namespace planet

@@ -547,9 +547,7 @@ std::array<uint32_t, gpu::kSkyTileLists> SkyPass::readTileCounts() {
 }
 
 std::vector<glm::vec4> SkyPass::readSkyView() {
-  const std::vector<float> values = vk::readbackRgbaFloat(context_, *skyView_);
-  std::vector<glm::vec4> texels(values.size() / 4);
-  std::memcpy(texels.data(), values.data(), values.size() * sizeof(float));
+  std::vector<glm::vec4> texels = vk::readbackRgbaFloat(context_, *skyView_);
   // Back to what the builds and the compose expect.
   vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
     vk::transitionImage(cmd, *skyView_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,

@@ -240,21 +240,21 @@ std::vector<uint8_t> readbackImage(Context& context, Image& image) {
   return texels;
 }
 
-std::vector<float> readbackRgbaFloat(Context& context, Image& image) {
+std::vector<glm::vec4> readbackRgbaFloat(Context& context, Image& image) {
   if (image.format != VK_FORMAT_R16G16B16A16_SFLOAT && image.format != VK_FORMAT_R32G32B32A32_SFLOAT)
     throw Error("readbackRgbaFloat: image format " + std::to_string(int(image.format)) + " is not RGBA float");
   const std::vector<uint8_t> bytes = readbackImage(context, image);
-  std::vector<float> values(bytes.size() / formatTexelSize(image.format) * 4);
+  std::vector<glm::vec4> texels(bytes.size() / formatTexelSize(image.format));
   if (image.format == VK_FORMAT_R32G32B32A32_SFLOAT) {
-    std::memcpy(values.data(), bytes.data(), bytes.size());
+    std::memcpy(texels.data(), bytes.data(), bytes.size());
   } else {
-    for (size_t i = 0; i < values.size(); ++i) {
+    for (size_t i = 0; i < texels.size() * 4; ++i) {
       uint16_t half = 0;
       std::memcpy(&half, bytes.data() + 2 * i, 2);
-      values[i] = glm::unpackHalf1x16(half);
+      texels[i / 4][int(i % 4)] = glm::unpackHalf1x16(half);
     }
   }
-  return values;
+  return texels;
 }
 
 }  // namespace planet::vk

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
 #include "vk/allocator.h"
@@ -70,8 +71,8 @@ void uploadImage(Context& context, Image& image, const void* texels, size_t byte
 
 // Reads every texel back, tightly packed, and leaves the image in TRANSFER_SRC_OPTIMAL (blocking).
 std::vector<uint8_t> readbackImage(Context& context, Image& image);
-// The texels of an RGBA float image (R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT) as floats, four
-// a texel; throws for other formats.
-std::vector<float> readbackRgbaFloat(Context& context, Image& image);
+// The texels of an RGBA float image (R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT), row by row;
+// throws for other formats.
+std::vector<glm::vec4> readbackRgbaFloat(Context& context, Image& image);
 
 }  // namespace planet::vk

@@ -137,7 +137,7 @@ struct SkyUniforms {
   vec4 cloudMotion;    // xyz: weights of the three cover images (seed 001 eq. 4.2), w: drift angle (rad) about the
                        // planet's axis
   vec4 extent;  // x: width, y: height (pixels), z: view angle of one pixel (rad), w: 1 in the frame's last compose (the
-                // camera's body's): draws the sun's disc, leaves the stars' luminance in alpha
+                // camera's body's): draws the sun's disc, leaves the stars' share in alpha
   vec4 surface;  // x: lowest surface (m above R: the sea level with a sea, else the deepest terrain), y: 1 with a sea,
                  // z: the ground sphere (m above R) a ray that met no geometry ends on, w: unused
   vec4 aerial;   // slices of the aerial-perspective volume: x: 1 when the camera is above the top of the
