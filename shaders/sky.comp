@@ -25,6 +25,10 @@
 #include "shared/star_params.h"
 #include "common/star_visibility.glsl"
 
+// Whether the body has airglow (its preset's airglow_cd_m2), as a specialization constant: the
+// shell's two ray-sphere intersections cost lavapipe up to a millisecond a frame, for every body.
+layout(constant_id = 3) const bool kSpecAirglow = true;
+
 #ifndef SKY_REFERENCE
 // The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial,
 // kSkyTileAerialClear), as a specialization constant: each class's tiles are dispatched by a
@@ -208,6 +212,11 @@ void main() {
         transmittance *= segmentTransmittance;
       }
     }
+    // The airglow: its far part seen through all the air and the clouds along the ray, the part
+    // in front of the air (from above the shell) as it is.
+    vec3 airglowNear = vec3(0.0f), airglowFar = vec3(0.0f);
+    if (kSpecAirglow) airglowAlong(sky.airglow, R, h, mu, tEnd, airglowNear, airglowFar);
+    inscatter += transmittance * airglowFar + airglowNear;
   }
 #else
   vec3 cloudComposite;
@@ -250,9 +259,18 @@ void main() {
         transmittance = textureLod(transmittanceTable, transmittanceUv(a, h0, mu0), 0.0f).rgb;
       }
     }
+    // The airglow (common/atmosphere.glsl): the shell's light beyond the air is seen through it
+    // (the transmittance from where the ray enters the air, or to what was drawn) and through
+    // the clouds; from above the shell, its part in front of the air is seen as it is.
+    // A tile clear of the clouds is seen from below them: its rays end on the ground before they
+    // could reach the shell (the altitude along a ray is highest at one of its ends).
+    vec3 airglowNear = vec3(0.0f), airglowFar = vec3(0.0f);
+    if (kSpecAirglow && kSpecTileClass != kSkyTileAerialClear)
+      airglowAlong(sky.airglow, R, h, mu, tEnd, airglowNear, airglowFar);
+    inscatter += transmittance * airglowFar;
     // The layer splits the ray: the air in front of it and the cloud (the composite), and the
     // rest of the ray's light seen through the cloud.
-    inscatter = cloudComposite + cloudTransmittance * inscatter;
+    inscatter = cloudComposite + cloudTransmittance * inscatter + airglowNear;
     transmittance *= cloudTransmittance;
   }
 #endif

@@ -8,6 +8,7 @@
 #include "planet/planet_description.h"
 #include "reference/atmosphere_model.h"
 #include "render/cloud_cover.h"
+#include "shared/exposure_params.h"
 
 namespace planet {
 namespace {
@@ -252,6 +253,57 @@ TEST(AtmosphereModel, MarsSkyIsButterscotchByDayAndBlueAroundTheSettingSun) {
   const glm::dvec3 away = skyTotal(params, table, 2.0, 3.0, 5.0, 180.0);
   EXPECT_GT(nearSun.b, 1.3 * nearSun.r) << nearSun.b / nearSun.r;
   EXPECT_GT(away.r, 2.0 * away.b) << away.b / away.r;
+}
+
+// Airglow (issue 21, point 4; common/atmosphere.glsl, airglowAlong), in double. Earth's shell
+// emits evenly between 87 and 97 km, so a ray's light is the zenith radiance times its path
+// through the shell over 10 km:
+// - straight up from the ground, the zenith radiance, all of it beyond the air (`far`);
+// - toward the horizon, (sqrt((R + 97 km)² − R²) − sqrt((R + 87 km)² − R²)) / 10 km, 5.9 times
+//   (van Rhijn's brightening, before the air in front dims it);
+// - from 400 km straight down, the zenith radiance again, now in front of the air (`near`), and
+//   nothing behind the ground;
+// - from 400 km grazing the shell at 92 km, its chord through the shell on each side of the
+//   lowest point (25 times the zenith's each), over 50 times in all: the band along the night
+//   side's limb;
+// - a ray that ends below the shell (on a mountain) gets none; a body without airglow none.
+TEST(AtmosphereModel, AirglowFollowsThePathThroughItsShell) {
+  const PlanetDescription earth = resolvePreset("earth");
+  const gpu::AirglowParams airglow = makeAirglowParams(earth);
+  const double R = earth.radiusM, bottom = earth.atmosphere.airglowBottomM, top = earth.atmosphere.airglowTopM;
+  const double kInfinity = 1e30;
+  auto luminance = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  const double zenith = earth.atmosphere.airglowCdM2 / gpu::kExposureSunCdM2;
+
+  const AirglowLight up = airglowAlong(airglow, R, 2.0, 1.0, kInfinity);
+  EXPECT_NEAR(luminance(up.farLight) / zenith, 1.0, 1e-6);
+  EXPECT_EQ(up.nearLight, glm::dvec3(0.0));
+  EXPECT_GT(up.farLight.g, 1.5 * up.farLight.r);  // green
+  EXPECT_GT(up.farLight.r, 2.0 * up.farLight.b);
+
+  const AirglowLight horizon = airglowAlong(airglow, R, 0.0, 0.0, kInfinity);
+  const double expected =
+      (std::sqrt((R + top) * (R + top) - R * R) - std::sqrt((R + bottom) * (R + bottom) - R * R)) / (top - bottom);
+  EXPECT_NEAR(luminance(horizon.farLight) / zenith, expected, 1e-4 * expected);
+  EXPECT_GT(expected, 5.5);
+  EXPECT_LT(expected, 6.5);
+
+  const double orbit = 400e3;
+  const AirglowLight down = airglowAlong(airglow, R, orbit, -1.0, orbit);  // ends on the ground
+  EXPECT_NEAR(luminance(down.nearLight) / zenith, 1.0, 1e-6);
+  EXPECT_EQ(down.farLight, glm::dvec3(0.0));
+
+  const double tangent = 92e3;
+  const double muGraze = -std::sqrt(1.0 - std::pow((R + tangent) / (R + orbit), 2.0));
+  const AirglowLight limb = airglowAlong(airglow, R, orbit, muGraze, kInfinity);
+  const double chord = std::sqrt((R + top) * (R + top) - (R + tangent) * (R + tangent)) / (top - bottom);
+  EXPECT_NEAR(luminance(limb.nearLight) / zenith, chord, 1e-3 * chord);
+  EXPECT_NEAR(luminance(limb.farLight) / zenith, chord, 1e-3 * chord);
+  EXPECT_GT(2.0 * chord, 50.0);
+
+  EXPECT_EQ(airglowAlong(airglow, R, 2.0, 0.3, 40e3).farLight, glm::dvec3(0.0));
+  const AirglowLight none = airglowAlong(makeAirglowParams(resolvePreset("mars")), 3389.5e3, 2.0, 1.0, kInfinity);
+  EXPECT_EQ(none.farLight + none.nearLight, glm::dvec3(0.0));
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 
 #include "core/error.h"
 #include "planet/planet_description.h"
+#include "reference/atmosphere_model.h"
+#include "shared/exposure_params.h"
 
 namespace planet {
 namespace {
@@ -242,6 +244,37 @@ TEST(PlanetDescription, SkyTablesAreOptionalAndChecked) {
   EXPECT_EQ(parseError(base + "[stars]\nfaintest_magnitude = nan\n"),
             "x.toml:17: faintest_magnitude must be a finite number, got nan");
   EXPECT_EQ(parseError("atmosphere = 3\n" + base), "x.toml:1: 'atmosphere' must be a table, got integer");
+}
+
+// Airglow (issue 21, point 4): off unless asked for; its shell must lie in the air, below its top,
+// and its colour must not be black.
+TEST(PlanetDescription, AirglowIsOptionalAndChecked) {
+  const std::string base(kMinimal);
+  const PlanetDescription plain = parsePlanetDescription(base + "[atmosphere]\n", "x.toml");
+  EXPECT_EQ(plain.atmosphere.airglowCdM2, 0.0);
+  EXPECT_EQ(makeAirglowParams(plain).radiance, glm::vec4(0.0f));
+  const PlanetDescription glow = parsePlanetDescription(
+      base + "[atmosphere]\nairglow_cd_m2 = 2e-4\nairglow_color = [0.5, 1, 0.5]\nairglow_top_m = 95000\n", "x.toml");
+  EXPECT_EQ(glow.atmosphere.airglowCdM2, 2e-4);
+  EXPECT_EQ(glow.atmosphere.airglowColor, glm::vec3(0.5f, 1.0f, 0.5f));
+  EXPECT_EQ(glow.atmosphere.airglowTopM, 95000.0);
+  EXPECT_NE(descriptionHash(plain), descriptionHash(glow));
+  // The zenith radiance has the luminance asked for, in the frame's unit.
+  const glm::vec4 radiance = makeAirglowParams(glow).radiance;
+  EXPECT_NEAR(0.2126 * radiance.r + 0.7152 * radiance.g + 0.0722 * radiance.b, 2e-4 / gpu::kExposureSunCdM2, 1e-15);
+  EXPECT_FLOAT_EQ(radiance.r, radiance.b);
+  EXPECT_FLOAT_EQ(radiance.w, 1.0f);
+  EXPECT_GT(resolvePreset("earth").atmosphere.airglowCdM2, 0.0);
+  EXPECT_EQ(resolvePreset("mars").atmosphere.airglowCdM2, 0.0);
+
+  const std::pair<const char*, const char*> errors[] = {
+      {"airglow_cd_m2 = 2\n", "x.toml:17: airglow_cd_m2 must be in [0, 1], got 2"},
+      {"height_m = 80000\nairglow_cd_m2 = 1e-4\n",
+       "x.toml:18: airglow_top_m (97000) must not be above the atmosphere's height_m (80000)"},
+      {"airglow_cd_m2 = 1e-4\nairglow_bottom_m = 90000\nairglow_top_m = 90000\n",
+       "x.toml:19: airglow_top_m (90000) must be above airglow_bottom_m (90000)"},
+      {"airglow_color = [0, 0, 0]\n", "x.toml:17: airglow_color must not be black (airglow_cd_m2 sets how bright)"}};
+  for (const auto& [input, message] : errors) EXPECT_EQ(parseError(base + "[atmosphere]\n" + input), message);
 }
 
 // The built-in presets differ where the issue asks: Earth has air, clouds and sea; Mars thin

@@ -48,7 +48,11 @@ constexpr std::string_view kAtmosphereKeys[] = {"height_m",
                                                 "mie_g",
                                                 "ozone_absorption",
                                                 "ozone_center_m",
-                                                "ozone_width_m"};
+                                                "ozone_width_m",
+                                                "airglow_cd_m2",
+                                                "airglow_color",
+                                                "airglow_bottom_m",
+                                                "airglow_top_m"};
 constexpr std::string_view kCloudKeys[] = {
     "bottom_m", "top_m",   "coverage", "sharpness",        "wavelength_m", "octaves", "seed",       "wind_mps",
     "evolve_period_s", "opacity", "climate", "cyclones", "cyclone_radius_m", "swirl", "shear", "warp", "resolution"};
@@ -209,6 +213,25 @@ AtmosphereDescription readAtmosphere(const Context& context, const toml::table& 
   a.ozoneWidthM = reader.number("ozone_width_m", kOzoneAltitudeRangeM).value_or(a.ozoneWidthM);
   if (a.ozoneWidthM <= 0.0 && a.ozoneAbsorption != glm::dvec3(0.0))
     context.fail(lineOf(*reader.find("ozone_width_m")), "ozone_width_m must be above 0 when ozone_absorption is set");
+  a.airglowCdM2 = reader.number("airglow_cd_m2", kAirglowRangeCdM2).value_or(a.airglowCdM2);
+  if (auto color = reader.color("airglow_color")) {
+    if (*color == glm::vec3(0.0f))
+      context.fail(lineOf(*reader.find("airglow_color")),
+                   "airglow_color must not be black (airglow_cd_m2 sets how bright)");
+    a.airglowColor = *color;
+  }
+  a.airglowBottomM = reader.number("airglow_bottom_m", kOzoneAltitudeRangeM).value_or(a.airglowBottomM);
+  a.airglowTopM = reader.number("airglow_top_m", kOzoneAltitudeRangeM).value_or(a.airglowTopM);
+  if (a.airglowCdM2 > 0.0) {
+    // The shell is drawn where the air is (the compose covers the atmosphere's extent on screen).
+    const toml::node* node = reader.find("airglow_top_m") ? reader.find("airglow_top_m") : reader.find("airglow_cd_m2");
+    if (!(a.airglowTopM > a.airglowBottomM))
+      context.fail(lineOf(*node), fmt::format("airglow_top_m ({}) must be above airglow_bottom_m ({})",
+                                              formatNumber(a.airglowTopM), formatNumber(a.airglowBottomM)));
+    if (a.airglowTopM > a.heightM)
+      context.fail(lineOf(*node), fmt::format("airglow_top_m ({}) must not be above the atmosphere's height_m ({})",
+                                              formatNumber(a.airglowTopM), formatNumber(a.heightM)));
+  }
   return a;
 }
 
@@ -736,11 +759,13 @@ std::string canonicalForm(const PlanetDescription& d) {
       "atmosphere.rayleigh_scale_height_m={}\natmosphere.mie_scattering={}\natmosphere.mie_extinction_ratio={}\n"
       "atmosphere.mie_absorption={}\n"
       "atmosphere.mie_scale_height_m={}\natmosphere.mie_g={}\natmosphere.ozone_absorption={}\n"
-      "atmosphere.ozone_center_m={}\natmosphere.ozone_width_m={}\n",
+      "atmosphere.ozone_center_m={}\natmosphere.ozone_width_m={}\natmosphere.airglow_cd_m2={}\n"
+      "atmosphere.airglow_color={}\natmosphere.airglow_bottom_m={}\natmosphere.airglow_top_m={}\n",
       a.enabled, formatNumber(a.heightM), vector(a.rayleighScattering), formatNumber(a.rayleighScaleHeightM),
       vector(a.mieScattering), formatNumber(a.mieExtinctionRatio), vector(a.mieAbsorption),
       formatNumber(a.mieScaleHeightM), vector(a.mieG), vector(a.ozoneAbsorption), formatNumber(a.ozoneCenterM),
-      formatNumber(a.ozoneWidthM));
+      formatNumber(a.ozoneWidthM), formatNumber(a.airglowCdM2), color(a.airglowColor), formatNumber(a.airglowBottomM),
+      formatNumber(a.airglowTopM));
   const CloudDescription& cl = d.clouds;
   out += fmt::format(
       "clouds={}\nclouds.bottom_m={}\nclouds.top_m={}\nclouds.coverage={}\nclouds.sharpness={}\n"

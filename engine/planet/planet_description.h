@@ -140,6 +140,12 @@ struct AtmosphereDescription {
   glm::dvec3 ozoneAbsorption{0.0, 0.0, 0.0};  // at the layer's peak; Earth: 0.65, 1.881, 0.085 ·10⁻⁶
   double ozoneCenterM = 25'000.0;             // the ozone density is a tent around this altitude
   double ozoneWidthM = 30'000.0;              // full width of the tent
+  // Airglow (issue 21, point 4: the night sky): light the upper air emits by itself at night
+  // (oxygen's green line, OH, sodium), from a shell between two altitudes; 0 for none.
+  double airglowCdM2 = 0.0;                   // luminance looking straight up through the shell
+  glm::vec3 airglowColor{0.6f, 1.0f, 0.25f};  // linear RGB, scaled to that luminance
+  double airglowBottomM = 87'000.0;
+  double airglowTopM = 97'000.0;
 };
 
 // A cloud shell (seed 001 §4.4): three noise images cross-faded over time (its eq. 4.2) and
@@ -245,6 +251,7 @@ inline constexpr Range kScaleHeightRangeM{10.0, 1e6};
 inline constexpr Range kMieExtinctionRatioRange{1.0, 10.0};
 inline constexpr Range kMieGRange{-0.99, 0.99};
 inline constexpr Range kOzoneAltitudeRangeM{0.0, 1e6};
+inline constexpr Range kAirglowRangeCdM2{0.0, 1.0};  // the night sky is ~2e-4 cd/m²; 1 is twilight
 inline constexpr Range kCloudAltitudeRangeM{0.0, 1e6};
 inline constexpr Range kUnitRange{0.0, 1.0};
 inline constexpr Range kSharpnessRange{1e-6, 1.0};

@@ -267,6 +267,10 @@ std::string formatPlanetDescription(const PlanetDescription& d) {
     w.key("ozone_absorption", vector3(a.ozoneAbsorption));
     w.key("ozone_center_m", a.ozoneCenterM);
     w.key("ozone_width_m", a.ozoneWidthM);
+    w.key("airglow_cd_m2", a.airglowCdM2);
+    w.key("airglow_color", color(a.airglowColor));
+    w.key("airglow_bottom_m", a.airglowBottomM);
+    w.key("airglow_top_m", a.airglowTopM);
   }
 
   const CloudDescription& cl = d.clouds;

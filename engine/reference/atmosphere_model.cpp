@@ -8,10 +8,12 @@
 
 #include "common/definitions.h"
 #include "core/parallel_for.h"
+#include "shared/exposure_params.h"
 
 namespace planet {
 namespace {
 
+using gpu::AirglowParams;
 using gpu::AtmosphereParams;
 using gpu::kMultiScatteringDirections;
 using gpu::kMultiScatteringGroundAlbedo;
@@ -103,6 +105,26 @@ AtmosphereParams makeAtmosphereParams(const PlanetDescription& planet) {
   p.mieG = glm::vec4(glm::vec3(a.mieG), 0.0f);
   p.ozone = glm::vec4(glm::vec3(a.ozoneAbsorption), float(a.ozoneCenterM));
   return p;
+}
+
+AirglowParams makeAirglowParams(const PlanetDescription& planet) {
+  const AtmosphereDescription& a = planet.atmosphere;
+  AirglowParams p{};
+  if (!a.enabled || !(a.airglowCdM2 > 0.0)) return p;
+  // The colour scaled to the luminance asked for, in the frame's unit.
+  const glm::dvec3 color(a.airglowColor);
+  const double luminance = glm::dot(color, glm::dvec3(0.2126, 0.7152, 0.0722));
+  const glm::dvec3 radiance = color * (a.airglowCdM2 / gpu::kExposureSunCdM2 / luminance);
+  p.radiance = glm::vec4(glm::vec3(radiance), 1.0f);
+  p.layer = glm::vec4(float(a.airglowBottomM), float(a.airglowTopM), 0.0f, 0.0f);
+  return p;
+}
+
+AirglowLight airglowAlong(const AirglowParams& airglow, double radiusM, double altitudeM, double mu, double tEndM) {
+  Kernel kernel;
+  AirglowLight light;
+  kernel.airglowAlong(airglow, radiusM, altitudeM, mu, tEndM, light.nearLight, light.farLight);
+  return light;
 }
 
 glm::dvec3 transmittanceToTop(const AtmosphereParams& atmosphere, double altitudeM, double mu, uint32_t steps) {

@@ -22,6 +22,16 @@ inline constexpr double kSunAngularRadiusRad = 0.0075;
 // The description's atmosphere as the shaders read it (zero coefficients when it has none,
 // so that every transmittance is 1).
 gpu::AtmosphereParams makeAtmosphereParams(const PlanetDescription& planet);
+// The preset's airglow (all 0 without one), for the compose's uniforms and airglowAlong.
+gpu::AirglowParams makeAirglowParams(const PlanetDescription& planet);
+// The airglow along a ray from altitude h (zenith cosine mu) up to distance tEnd, in double
+// (common/atmosphere.glsl, airglowAlong): the part in front of the air seen from above the
+// shell, and the rest, which the air along the ray dims.
+struct AirglowLight {
+  glm::dvec3 nearLight{0.0};
+  glm::dvec3 farLight{0.0};
+};
+AirglowLight airglowAlong(const gpu::AirglowParams& airglow, double radiusM, double altitudeM, double mu, double tEndM);
 
 // Transmittance from altitude h (m above the radius) along zenith cosine mu to the top of the
 // atmosphere, by `steps` midpoint steps in double; the planet is not an obstacle here.

@@ -230,6 +230,8 @@ void SkyPass::prepareAllPipelines() {
 
 void SkyPass::makePipelines(bool clouds) {
   const uint32_t* constants = specialization_[clouds ? 1 : 0];
+  // sky.comp's kSpecAirglow (constant 3).
+  const uint32_t airglow = makeAirglowParams(planet_).radiance.w > 0.5f ? 1u : 0u;
   // The sky-view table in every mode: the sea mirrors it (TerrainPass::setSkyView).
   if (!skyViewBuild_.get())
     skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
@@ -247,7 +249,7 @@ void SkyPass::makePipelines(bool clouds) {
     }
     for (uint32_t tileClass = 0; tileClass < gpu::kSkyTileClasses; ++tileClass) {
       if (tablesCompose_[clouds][tileClass].get()) continue;
-      const uint32_t classConstants[] = {constants[0], constants[1], tileClass};
+      const uint32_t classConstants[] = {constants[0], constants[1], tileClass, airglow};
       tablesCompose_[clouds][tileClass] = {
           context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_comp, layout_.get(), classConstants)};
     }
@@ -261,9 +263,11 @@ void SkyPass::makePipelines(bool clouds) {
       }
     }
   }
-  if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get())
+  if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get()) {
+    const uint32_t referenceConstants[] = {constants[0], constants[1], gpu::kSkyTileMixed, airglow};
     referenceCompose_[clouds] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_reference_comp,
-                                                                               layout_.get(), {constants, 2})};
+                                                                               layout_.get(), referenceConstants)};
+  }
 }
 
 void SkyPass::setTargets(const vk::Image& hdr, const vk::Image& depth) {
@@ -320,6 +324,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   gpu::SkyUniforms& u = uniformData_;
   u = gpu::SkyUniforms{};
   u.atmosphere = tables_.atmosphere();
+  u.airglow = makeAirglowParams(planet_);
   u.atmosphere.radii.z = float(view.sunAngularRadiusRad);
   u.atmosphere.ozoneSun.y *= float(view.sunIrradianceScale);
   u.clipToLocal = glm::mat4(glm::inverse(view.viewProjection));

@@ -443,4 +443,43 @@ vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u
 }
 #endif
 
+// Airglow (issue 21, point 4): the upper air's own faint light (oxygen's green line, OH, sodium),
+// which is the larger part of the natural night sky's brightness away from the Milky Way. The
+// shell between g.layer.x and .y (m above R) emits evenly through its depth, so a ray's
+// light is the zenith radiance g.radiance.xyz times its path inside the shell over the shell's
+// thickness: straight up it is the zenith radiance; toward the horizon the path grows (van
+// Rhijn's effect: from the ground about 6 times at the horizon, and the air in front dims it
+// there), and from space a ray grazing the shell crosses tens of thicknesses: the thin bright
+// band photographs from orbit show along the night side's limb.
+// The stretch (enter, leave) of a ray from altitude h (zenith cosine mu) inside the sphere at hs;
+// leave < enter where it has none ahead.
+vec2 stretchInsideSphere(real R, real h, real mu, real hs) {
+  vec2 hits = raySphere(R, h, mu, hs);
+  if (h < hs) return vec2(real(0.0f), hits.x);  // from inside, the only hit ahead
+  if (hits.y < real(0.0f)) return vec2(real(0.0f), real(-1.0f));  // misses, or only touches it
+  return hits;
+}
+// How much of [t0, t1] lies in such a stretch.
+real overlap(vec2 stretch, real t0, real t1) { return max(min(stretch.y, t1) - max(stretch.x, t0), real(0.0f)); }
+
+// The airglow along a ray from altitude h with zenith cosine mu up to distance tEnd (where it
+// meets something drawn, or the ground): `nearLight`, the shell's light in front of the ray's
+// lowest point seen from above the shell, which no air dims, and `farLight`, the rest, which
+// the caller dims by the ray's transmittance through the air (the shell is above nearly all of
+// it). Black without airglow.
+void airglowAlong(IN(AirglowParams) g, real R, real h, real mu, real tEnd, OUT(vec3) nearLight, OUT(vec3) farLight) {
+  nearLight = vec3(real(0.0f), real(0.0f), real(0.0f));
+  farLight = nearLight;
+  if (!(real(g.radiance.w) > real(0.5f))) return;
+  real bottom = real(g.layer.x), top = real(g.layer.y);
+  // From above the shell, the ray's stretch before its lowest point is in front of the air.
+  real split = h > top ? min(max(-(R + h) * mu, real(0.0f)), tEnd) : real(0.0f);
+  vec2 inTop = stretchInsideSphere(R, h, mu, top), inBottom = stretchInsideSphere(R, h, mu, bottom);
+  real nearPath = overlap(inTop, real(0.0f), split) - overlap(inBottom, real(0.0f), split);
+  real farPath = overlap(inTop, split, tEnd) - overlap(inBottom, split, tEnd);
+  vec3 perMetre = vec3(real(g.radiance.x), real(g.radiance.y), real(g.radiance.z)) / (top - bottom);
+  nearLight = perMetre * max(nearPath, real(0.0f));
+  farLight = perMetre * max(farPath, real(0.0f));
+}
+
 #endif

@@ -39,8 +39,8 @@ GPU_CONST float kExposureKeySlope = 0.25f;
 // air of 1) is the sun's illuminance, 1.28e5 lux, spread over a steradian.
 GPU_CONST float kExposureSunCdM2 = 1.28e5f;
 // Clamps on the exposure: the smallest keeps a bright scene (snow at noon) from turning dim; the
-// largest, 2^21, is where the key meets the natural night sky's luminance (2e-4 cd/m²), which this
-// model's air has not got (airglow, zodiacal light): a darker frame is not lifted further, and a
+// largest, 2^21, is where the key meets the natural night sky's luminance (2e-4 cd/m²; Earth's
+// airglow gives about half of it, common/atmosphere.glsl): a darker frame is not lifted further, and a
 // frame with nothing lit takes it.
 GPU_CONST float kExposureMin = 1.0f;
 GPU_CONST float kExposureMax = 2097152.0f;

@@ -122,6 +122,15 @@ struct AtmosphereParams {
 };
 GPU_ASSERT_SIZE(AtmosphereParams, 112)
 
+// The airglow's shell (common/atmosphere.glsl, airglowAlong), for the compose only (kept out of
+// AtmosphereParams, which SkyRayPush carries in 128 bytes of push constants).
+struct AirglowParams {
+  vec4 radiance;  // xyz: radiance looking straight up through the shell (the frame's unit: kExposureSunCdM2 cd/m² of
+                  // luminance; not scaled with the sun, which does not light it), w: 1 if any
+  vec4 layer;     // x: the shell's bottom, y: its top (m above R), z, w: unused
+};
+GPU_ASSERT_SIZE(AirglowParams, 32)
+
 struct SkyUniforms {
   AtmosphereParams atmosphere;
   mat4 clipToLocal;    // clip (x, y) at depth 1 → view ray, local frame, camera at the origin
@@ -150,8 +159,9 @@ struct SkyUniforms {
   vec4 skyIrradiance[16];
   // The other bodies of a scene, which hide the sun from this one's air (common/eclipse.glsl).
   EclipseParams eclipse;
+  AirglowParams airglow;
 };
-GPU_ASSERT_SIZE(SkyUniforms, 672 + 272)
+GPU_ASSERT_SIZE(SkyUniforms, 672 + 272 + 32)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
