@@ -219,7 +219,9 @@ TEST(ClipmapOrientation, BasisTurnsSmoothlyAndThroughWorldPolesOnlyByASymmetry) 
       previous = frame;
     }
     // North along a meridian is its own parallel transport: the axes turn by just the step.
-    if (circle.meridian) EXPECT_NEAR(worstMeridianRatio, 1.0, 1e-3) << describe(circle.across);
+    if (circle.meridian) {
+      EXPECT_NEAR(worstMeridianRatio, 1.0, 1e-3) << describe(circle.across);
+    }
   }
 }
 

@@ -359,11 +359,12 @@ TEST_F(PatchTexturesGpu, ABudgetGrowsEachLevelFromItsCentreToWhatAWholeBuildWrit
                   centreB < held.originB + held.height)
           << "frame " << frames << " level " << j;
       const PatchTextures::Region& old = before[j];
-      if (!old.empty())
+      if (!old.empty()) {
         EXPECT_TRUE(held.originA <= old.originA && held.originB <= old.originB &&
                     held.originA + held.width >= old.originA + old.width &&
                     held.originB + held.height >= old.originB + old.height)
             << "frame " << frames << " level " << j;
+      }
       before[j] = held;
     }
     if (texels == 0) {
@@ -372,7 +373,9 @@ TEST_F(PatchTexturesGpu, ABudgetGrowsEachLevelFromItsCentreToWhatAWholeBuildWrit
     }
     EXPECT_LE(texels, std::max<uint64_t>(budget, PatchTextures::kMinStripTexels * res)) << "frame " << frames;
     // Coarsest first: while the coarsest level is not whole, every frame works on it.
-    if (!coarsestWhole) EXPECT_FALSE(plan.work.back().empty()) << "frame " << frames;
+    if (!coarsestWhole) {
+      EXPECT_FALSE(plan.work.back().empty()) << "frame " << frames;
+    }
     coarsestWhole = plan.held.back().texels() == res * res;
     written += texels;
     const auto levelsWorked = uint32_t(std::count_if(plan.work.begin(), plan.work.end(),

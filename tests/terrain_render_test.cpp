@@ -345,8 +345,8 @@ TEST_F(TerrainRender, GroundThatCannotBeSeaFloorIsDrawnFirstAndThePictureIsTheSa
     for (size_t t = 0; t < frame.triangles; ++t)
       if (dry[3 * t] != dry[3 * t + 1] || dry[3 * t] != dry[3 * t + 2]) ++kept;
     const double share = double(kept) / double(frame.triangles);
-    std::printf("sea floor split, %s: %zu of %u triangles drawn with the early depth test (%.0f %%)\n", c.name, kept,
-                frame.triangles, 100.0 * share);
+    std::printf("sea floor split, %s: %zu of %zu triangles drawn with the early depth test (%.0f %%)\n", c.name, kept,
+                size_t(frame.triangles), 100.0 * share);
     EXPECT_GE(share, c.minDryShare) << kept << " of " << frame.triangles;
     EXPECT_LE(share, c.maxDryShare) << kept << " of " << frame.triangles;
   }
