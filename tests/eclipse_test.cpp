@@ -445,8 +445,9 @@ TEST_F(EclipseGpu, ASceneComposesNoTileOfGroundWithoutTheSkyViewTable) {
     EXPECT_EQ(a.image.pixels, b.image.pixels);
     for (size_t body = 0; body < scene.bodies.size(); ++body)
       EXPECT_EQ(classes.sky(body).readTileCounts()[gpu::kSkyTileAerial], 0u) << scene.bodies[body].name;
-    if (pose.altitudeM < 1e4)  // the sky above the horizon is tiles of sky
+    if (pose.altitudeM < 1e4) {  // the sky above the horizon is tiles of sky
       EXPECT_GT(classes.sky(terra).readTileCounts()[gpu::kSkyTileSky], 0u);
+    }
   }
 }
 
