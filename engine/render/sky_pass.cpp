@@ -152,7 +152,7 @@ SkyMode parseSkyMode(std::string_view name) {
 
 SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const SkyTables& tables,
                  const SkySettings& settings, bool eclipses)
-    : context_(context), planet_(planet), tables_(tables), settings_(settings) {
+    : context_(context), planet_(planet), airglow_(makeAirglowParams(planet)), tables_(tables), settings_(settings) {
   specialization_[0][0] = specialization_[1][0] = eclipses ? 1u : 0u;
   validateSkySettings(settings);
   vk::requireFormatFeatures(context, kTableFormat,
@@ -231,7 +231,7 @@ void SkyPass::prepareAllPipelines() {
 void SkyPass::makePipelines(bool clouds) {
   const uint32_t* constants = specialization_[clouds ? 1 : 0];
   // sky.comp's kSpecAirglow (constant 3).
-  const uint32_t airglow = makeAirglowParams(planet_).radiance.w > 0.5f ? 1u : 0u;
+  const uint32_t airglow = airglow_.radiance.w > 0.5f ? 1u : 0u;
   // The sky-view table in every mode: the sea mirrors it (TerrainPass::setSkyView).
   if (!skyViewBuild_.get())
     skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
@@ -324,7 +324,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   gpu::SkyUniforms& u = uniformData_;
   u = gpu::SkyUniforms{};
   u.atmosphere = tables_.atmosphere();
-  u.airglow = makeAirglowParams(planet_);
+  u.airglow = airglow_;
   u.atmosphere.radii.z = float(view.sunAngularRadiusRad);
   u.atmosphere.ozoneSun.y *= float(view.sunIrradianceScale);
   u.clipToLocal = glm::mat4(glm::inverse(view.viewProjection));

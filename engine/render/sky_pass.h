@@ -210,6 +210,7 @@ class SkyPass {
   vk::Context& context_;
   uint32_t specialization_[2][2] = {{1u, 0u}, {1u, 1u}};  // [clouds]: sky.comp's kSpecEclipses, kSpecClouds
   PlanetDescription planet_;
+  const gpu::AirglowParams airglow_;  // the preset's (makeAirglowParams), in the compose's uniforms
   const SkyTables& tables_;
   SkySettings settings_;
   gpu::SkyUniforms uniformData_{};

@@ -61,6 +61,17 @@ real distanceToTop(IN(AtmosphereParams) a, real h, real mu) {
   return max(t.x, real(0.0f));
 }
 
+// The stretch (enter, leave) of a ray from altitude h (zenith cosine mu) inside the sphere at hs;
+// leave < enter where it has none ahead.
+vec2 stretchInsideSphere(real R, real h, real mu, real hs) {
+  vec2 hits = raySphere(R, h, mu, hs);
+  if (h < hs) return vec2(real(0.0f), hits.x);  // from inside, the only hit ahead
+  if (hits.y < real(0.0f)) return vec2(real(0.0f), real(-1.0f));  // misses, or only touches it
+  return hits;
+}
+// How much of [t0, t1] lies in such a stretch.
+real overlap(vec2 stretch, real t0, real t1) { return max(min(stretch.y, t1) - max(stretch.x, t0), real(0.0f)); }
+
 // True when the ray from altitude h along mu meets the ground (ahead of the start).
 bool rayHitsGround(real R, real h, real mu) {
   if (mu >= real(0.0f)) return false;
@@ -396,10 +407,9 @@ void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu,
 // top, or meets the ground sphere at altitude hGround ≤ h). y ≤ x when it misses the air.
 vec2 atmosphereStretch(IN(AtmosphereParams) a, real h, real mu, real hGround) {
   real R = real(a.radii.x);
-  vec2 topHits = raySphere(R, h, mu, real(a.radii.y));
-  bool outside = h >= real(a.radii.y);
-  real tStart = outside ? topHits.x : real(0.0f);
-  real tExit = outside ? topHits.y : topHits.x;
+  vec2 air = stretchInsideSphere(R, h, mu, real(a.radii.y));
+  real tStart = air.x;
+  real tExit = air.y;
   if (tStart < real(0.0f) || tExit <= tStart) return vec2(real(0.0f), real(-1.0f));
   vec2 ground = raySphere(R, h, mu, min(hGround, h));
   real tEnd = (mu < real(0.0f) && ground.x >= real(0.0f)) ? min(ground.x, tExit) : tExit;
@@ -451,16 +461,8 @@ vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u
 // Rhijn's effect: from the ground about 6 times at the horizon, and the air in front dims it
 // there), and from space a ray grazing the shell crosses tens of thicknesses: the thin bright
 // band photographs from orbit show along the night side's limb.
-// The stretch (enter, leave) of a ray from altitude h (zenith cosine mu) inside the sphere at hs;
-// leave < enter where it has none ahead.
-vec2 stretchInsideSphere(real R, real h, real mu, real hs) {
-  vec2 hits = raySphere(R, h, mu, hs);
-  if (h < hs) return vec2(real(0.0f), hits.x);  // from inside, the only hit ahead
-  if (hits.y < real(0.0f)) return vec2(real(0.0f), real(-1.0f));  // misses, or only touches it
-  return hits;
-}
-// How much of [t0, t1] lies in such a stretch.
-real overlap(vec2 stretch, real t0, real t1) { return max(min(stretch.y, t1) - max(stretch.x, t0), real(0.0f)); }
+// The path inside the shell is that inside its top sphere less that inside its bottom one
+// (stretchInsideSphere, overlap).
 
 // The airglow along a ray from altitude h with zenith cosine mu up to distance tEnd (where it
 // meets something drawn, or the ground): `nearLight`, the shell's light in front of the ray's
