@@ -46,10 +46,22 @@ void main() {
   AtmosphereParams a = sky.atmosphere;
   float R = a.radii.x;
   float h = sky.camera.x;
+  float hGround = sky.surface.z;
+  // From above the air, a column whose ray misses the air (space beside the disc) marches instead
+  // the ray of its vertical plane that just meets the ground sphere: the limb's, whose light the
+  // pixels at the disc's edge, which the filter blends with this column's, nearly have. Left
+  // empty it pulled their light toward none, and the transmittance toward 1.
+  vec2 ownStretch = atmosphereStretch(a, h, dir.z, hGround);
+  if (aerialFromAbove() && !(ownStretch.y > ownStretch.x)) {
+    float ratio = (R + hGround) / (R + h);
+    float muLimb = -sqrt(max(1.0f - ratio * ratio, 0.0f)) - 1.0e-4f;
+    float across = length(dir.xy);
+    vec2 side = across > 1.0e-6f ? dir.xy / across : vec2(1.0f, 0.0f);
+    dir = vec3(side * sqrt(1.0f - muLimb * muLimb), muLimb);
+  }
   float mu = dir.z;
   float muS = sky.sunLocal.z;
   float nu = dot(dir, sky.sunLocal.xyz);
-  float hGround = sky.surface.z;
   vec2 stretch = atmosphereStretch(a, h, mu, hGround);
   vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
   bool air = a.radii.w > 0.5f && stretch.y > stretch.x;
@@ -75,7 +87,7 @@ void main() {
   // low down, their neighbours only the thin air above), it holds the light at the slices' ends,
   // as the depth volume does, and the compose reads both by distance.
   bool byOpacity = !aerialFromAbove();
-  imageStore(aerialLight, ivec3(column, 0), vec4(0.0f));
+  imageStore(aerialLight, ivec3(column, 0), aerialEncodeLight(vec3(0.0f)));
   imageStore(aerialTransmittance, ivec3(column, 0), vec4(0.0f));
   uint level = 1u;
   vec3 lastTotal = vec3(0.0f);
@@ -91,7 +103,7 @@ void main() {
         for (; byOpacity && level < kAerialSize && float(level) / float(kAerialSize) <= opacity; ++level) {
           float w = (float(level) / float(kAerialSize) - lastOpacity) / max(opacity - lastOpacity, 1.0e-7f);
           imageStore(aerialLight, ivec3(column, level),
-                     vec4(mix(lastTotal, total, clamp(w, 0.0f, 1.0f)) * kSkyHalfLightScale, 0.0f));
+                     aerialEncodeLight(mix(lastTotal, total, clamp(w, 0.0f, 1.0f))));
         }
         lastTotal = total;
         lastOpacity = opacity;
@@ -99,8 +111,8 @@ void main() {
       done = target;
     }
     imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(-log(max(transmittance, vec3(1.0e-30f))), 0.0f));
-    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), vec4(total * kSkyHalfLightScale, 0.0f));
+    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), aerialEncodeLight(total));
   }
   for (; byOpacity && level <= kAerialSize; ++level)
-    imageStore(aerialLight, ivec3(column, level), vec4(total * kSkyHalfLightScale, 0.0f));
+    imageStore(aerialLight, ivec3(column, level), aerialEncodeLight(total));
 }

@@ -15,6 +15,32 @@
 
 bool aerialFromAbove() { return sky.aerial.x > 0.5f; }
 
+// Rec. 709 luminance (the frame's primaries).
+float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
+
+// The light volume's texels: rgb the light times kSkyHalfLightScale, a log2 of its luminance
+// plus kAerialLogFloor, so that the filter blends both the light and its logarithm.
+vec4 aerialEncodeLight(vec3 light) {
+  return vec4(light * kSkyHalfLightScale, log2(max(luminance(light), 0.0f) + kAerialLogFloor));
+}
+
+// The light of a filtered texel. From above the air, neighbouring columns can differ by orders of
+// magnitude: across the terminator the lit air's light falls 10⁻⁴ within a column's width, and
+// the filter's linear blend carried the lit column's light most of the way into the night; once
+// auto exposure lifts the night side each column's edge showed as a step, a staircase along the
+// terminator seen from orbit. There the linear blend is held to at most kAerialBlendExcess times
+// the blend of the logarithms, whose light falls geometrically between columns, as the light
+// along the ground does; neighbours within a factor of about 14 (the limb's silhouette, a sunlit
+// disc) keep the linear blend, which follows the march more closely there. (From inside the air
+// each column's first level is the camera's, with no light, and the linear blend stays.)
+vec3 aerialDecodeLight(vec4 texel) {
+  vec3 light = texel.rgb * (1.0f / kSkyHalfLightScale);
+  if (!aerialFromAbove()) return light;
+  float linear = luminance(light);
+  float geometric = max(exp2(texel.a) - kAerialLogFloor, 0.0f);
+  return linear > kAerialBlendExcess * geometric ? light * (kAerialBlendExcess * geometric / linear) : light;
+}
+
 // The stretch [x, y] of distances from the camera that a column's slices split (from above),
 // from the ray's stretch through the air (atmosphereStretch) and its hits on the ground sphere
 // (raySphere at hGround), for a caller that has them already.

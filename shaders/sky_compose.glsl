@@ -45,8 +45,6 @@ vec3 marchDirection;
 
 const float kInfinity = 3.0e38f;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
-
 // The sky irradiance table at sun zenith cosine muS (atmosphere_lookup.glsl, skyIrradianceBetween).
 vec3 skyIrradianceAt(float muS) {
   float x = skyIrradianceX(muS);
@@ -211,7 +209,7 @@ void aerialPerspective(vec2 uv, float t, float mu, vec2 columnStretch, out vec3 
   }
   float level = (1.0f - transmittance.y) * float(kAerialSize);
   vec3 byLevel = vec3(uv, (level + 0.5f) / float(kAerialSize + 1u));
-  light = textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f).rgb * (1.0f / kSkyHalfLightScale);
+  light = aerialDecodeLight(textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f));
 }
 
 // The depths of the 2×2 pixels from `pixel` (one gather, in its component order: x (+0, +1),

@@ -460,6 +460,33 @@ TEST_F(SkyRender, TablesSkyMatchesTheReferenceMarch) {
   }
 }
 
+// The terminator seen from orbit at the exposure the night side takes (12,000 km, the sun 30°
+// below the camera's horizon, exposure 500: what auto exposure measures there) follows the
+// per-pixel march. From above the air each column of the aerial-perspective volume splits its own
+// ray, and across the terminator neighbouring columns' light differs by orders of magnitude;
+// blended linearly, the lit side's light reached a column's width into the night, and lifted by
+// the exposure each column's edge showed as a step, a staircase along the terminator (25.0 dB).
+// Held to twice the blend of the logarithms, the light falls geometrically between such columns
+// as the march's does (37.4 dB measured).
+TEST_F(SkyRender, TheTerminatorFromOrbitHasNoStepsAtTheNightSidesExposure) {
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  settings.sky.exposure = 500.0;
+  RenderSettings reference = settings;
+  reference.sky.mode = SkyMode::Reference;
+  const PlanetDescription earth = clearEarth();
+  const CameraPose orbit{20, -30, 1.2e7};
+  const SunPose sun{30, -30};
+  const Rgba8Image a = Renderer(context(), earth, settings).render(orbit, sun).image;
+  const Rgba8Image b = Renderer(context(), earth, reference).render(orbit, sun).image;
+  const double psnr = psnrRgb(a, b);
+  std::printf("the terminator from 12,000 km at exposure 500: %.1f dB against the march\n", psnr);
+  EXPECT_GE(psnr, 30.0);
+  // The lit crescent is in view, saturated: not one black image against another.
+  EXPECT_GT(meanColor(a, 0, 0, 320, 180).luminance(), 10.0);
+}
+
 // The haze over the sea from an airliner's height at sunset (the aerial-perspective volume, issue
 // 21, point 1) follows the per-pixel march without bands: from 10 km looking 5° down, the mean of
 // each row within 3 of 255 of the march's. The volume held its light by distance, filtered

@@ -72,8 +72,13 @@ GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic 
 // to each slice's far end (the first the camera's, 0), and the light scattered toward the camera
 // where the column's opacity 1 − T (green) reaches j / kAerialSize (from above the air: at the
 // slices' ends; sky_compose.glsl, aerialPerspective, says why). The light is stored times
-// kSkyHalfLightScale, as the cloud light is.
+// kSkyHalfLightScale, as the cloud light is; alpha holds log2 of its luminance plus
+// kAerialLogFloor (sky_aerial.glsl, aerialDecodeLight, says why): 2⁻⁴⁰ of the sun's irradiance,
+// 2⁸ below the darkest light auto exposure measures (kExposureMinLog2), so that the floor never
+// shows.
 GPU_CONST uint kAerialSize = 32u;
+GPU_CONST float kAerialLogFloor = 9.094947e-13f;  // 2^-40
+GPU_CONST float kAerialBlendExcess = 2.0f;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
 // Bindings of the per-frame table builds (set 0).
 GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (uniform buffer: sky_uniforms.glsl)
