@@ -1,11 +1,12 @@
 #version 450
 // Eye adaptation, first dispatch (issue 21, point 4): the luminance histogram of the composed
 // HDR frame at half resolution: each invocation takes the mean luminance of a 2 × 2 block of
-// pixels (a glint still counts, at a quarter of its pixel's value; the stars do not: alpha gives
-// their share of the light), which quarters the atomic adds that dominate this pass on a CPU
-// device. Each 16 × 16 group counts its blocks into a histogram in shared memory, then adds its
-// non-empty bins to the frame's. Integer counts: the result does not depend on the order the
-// groups run in, so the same frame always gives the same histogram.
+// pixels (a glint still counts, at a quarter of its pixel's value; the stars do not, and city
+// lights count at their physical radiance: alpha gives their shares of the light), which
+// quarters the atomic adds that dominate this pass on a CPU device. Each 16 × 16 group counts
+// its blocks into a histogram in shared memory, then adds its non-empty bins to the frame's.
+// Integer counts: the result does not depend on the order the groups run in, so the same frame
+// always gives the same histogram.
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/definitions.glsl"
@@ -34,7 +35,7 @@ void main() {
         ivec2 pixel = block + ivec2(dx, dy);
         if (pixel.x < size.x && pixel.y < size.y) {
           vec4 c = imageLoad(color, pixel);
-          sum += exposureSceneLuminance(c.r, c.g, c.b, c.a);
+          sum += exposureSceneLuminance(c.r, c.g, c.b, c.a, push.frame.w);
           count += 1.0f;
         }
       }

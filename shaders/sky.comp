@@ -22,6 +22,7 @@
 
 #include "sky_compose.glsl"
 #include "shared/exposure_params.h"
+#include "common/exposure.glsl"
 #include "shared/star_params.h"
 #include "common/star_visibility.glsl"
 
@@ -304,10 +305,15 @@ void main() {
   // a composed pixel plus the stars' share of its light, which auto exposure neither measures
   // nor applies (shared/exposure_params.h). From a farther body's: 1 on geometry, the stars'
   // negated relative flux kept on the background, for the compose of a nearer body's air, which
-  // fades them against its own sky.
+  // fades them against its own sky. From any, on geometry with city lights, the mark of their
+  // share of the composed light: what reaches the camera of the share the terrain wrote.
   bool lastCompose = sky.extent.w > 0.5f;
   float total = luminance(result);
   float starShare = total > 0.0f ? clamp(starLuminance / total, 0.0f, 1.0f) : 0.0f;
+  float lightsShare = 0.0f;
+  if (geometry && total > 0.0f)
+    lightsShare = exposureLightsShare(stored.a) * clamp(luminance(surface * transmittance) / total, 0.0f, 1.0f);
   float alpha = lastCompose ? kExposureComposedAlpha + starShare : geometry ? 1.0f : stored.a;
+  alpha = exposureLightsMark(lightsShare, alpha);
   imageStore(color, pixel, vec4(result, alpha));
 }

@@ -88,6 +88,6 @@ void main() {
   outUpJitter = vec4(s.up, s.jitter);
   outLatitudeFootprint = vec4(s.sinLatitude, s.footprintX, s.footprintY, s.latitudeEdge);
 #else
-  outColor = vec4(shadeGround(s), 1.0f);
+  outColor = shadeGround(s);
 #endif
 }

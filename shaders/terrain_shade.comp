@@ -42,5 +42,5 @@ void main() {
   s.footprintX = latitudeFootprint.y;
   s.footprintY = latitudeFootprint.z;
   s.latitudeEdge = latitudeFootprint.w;
-  imageStore(color, pixel, vec4(shadeGround(s), 1.0f));
+  imageStore(color, pixel, shadeGround(s));
 }

@@ -32,6 +32,8 @@ layout(constant_id = 3) const bool kSpecEclipses = true;  // false: no other bod
 #include "common/eclipse.glsl"
 
 #include "common/city_lights.glsl"
+#include "shared/exposure_params.h"
+#include "common/exposure.glsl"
 
 // The planet's colour scheme (ColorScheme) and whether it has polar caps, as specialization
 // constants (TerrainPass::createDrawPipeline): lavapipe runs every side of a branch, so each
@@ -108,8 +110,10 @@ vec3 cityLights(float altitude, float slope, float sinLatitude, float jitter, ve
   return frame.lights.radiance.rgb * lightsCover(frame.lights, direction, habitability, footprintM / frame.camera.y);
 }
 
-// HDR radiance of the ground at `s`.
-vec3 shadeGround(TerrainSample s) {
+// HDR radiance of the ground at `s`, and the target's alpha for it: 1 (the ground's), or where
+// city lights shine the mark of their share of the light, which auto exposure shows and measures
+// apart (shared/exposure_params.h).
+vec4 shadeGround(TerrainSample s) {
   vec3 normal = s.normal;
   float height = s.height;
   float pixelM = s.pixelM;
@@ -189,8 +193,12 @@ vec3 shadeGround(TerrainSample s) {
   vec3 radiance = albedo / kAtmospherePi * (sunLight * max(dot(normal, sun), 0.0f) + skyLight + bounce);
   // The lights, switched on through dusk by the sun's elevation here; the sky pass sees them
   // through the air and the clouds as it sees the ground.
-  if (kSpecLights != 0u) radiance += emitted * lightsDuskFade(muS);
-  return radiance;
+  if (kSpecLights == 0u) return vec4(radiance, 1.0f);
+  vec3 lights = emitted * lightsDuskFade(muS);
+  radiance += lights;
+  float total = exposureLuminance(radiance.r, radiance.g, radiance.b);
+  float share = total > 0.0f ? exposureLuminance(lights.r, lights.g, lights.b) / total : 0.0f;
+  return vec4(radiance, exposureLightsMark(share, 1.0f));
 }
 
 #endif

@@ -2,8 +2,8 @@
 // HDR → display (issue 4, point 2): exposure, then Narkowicz's fit of the ACES filmic curve
 // (2015); the sRGB target encodes the result. The exposure is the fixed one (params.x), or with
 // eye adaptation (issue 21, point 4; params.y = 1) the one the luminance pass wrote this frame,
-// and then the stars' share of each pixel (from its alpha: shared/exposure_params.h) takes
-// kExposureStarExposure instead (the pixel's colour stands for the stars' in it).
+// and then the stars' and the city lights' shares of each pixel (from its alpha: shared/
+// exposure_params.h) take exposures of their own (exposureDisplayScale).
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/definitions.glsl"
@@ -22,7 +22,7 @@ void main() {
   vec4 c = imageLoad(hdr, ivec2(gl_FragCoord.xy));
   float scale = params.x;
   if (params.y > 0.5f) {
-    scale = mix(exposure.values.x, kExposureStarExposure, exposureStarShare(c.a));
+    scale = exposureDisplayScale(exposure.values.x, c.a);
   }
   outColor = vec4(filmic(c.rgb * scale), 1.0f);
 }

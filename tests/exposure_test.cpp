@@ -181,6 +181,37 @@ TEST(Exposure, BlackShadowAndTheSunDoNotMoveTheMeasurement) {
   for (glm::vec4& p : starInSky) p.a = gpu::kExposureComposedAlpha;
   starInSky[3] = glm::vec4(glm::vec3(0.04f + 1e-6f), gpu::kExposureComposedAlpha + 0.04f / (0.04f + 1e-6f));
   EXPECT_NEAR(exposureFromHistogram(exposureHistogram(starInSky, 2, 2)).log2Luminance, std::log2(1e-6), 0.07);
+  // City lights count at their physical radiance: the share of the pixel that alpha marks
+  // (kExposureLightsAlpha + share) divided by the preset's gain. Ground of 1e-6 under lights
+  // drawn at 0.02 with a gain of 2e4 (1e-6 physical) measures 2e-6; with a gain of 1, 0.02.
+  std::vector<glm::vec4> lit = greyFrame(4, 0.02f + 1e-6f);
+  for (glm::vec4& p : lit) p.a = gpu::kExposureLightsAlpha + 0.02f / (0.02f + 1e-6f);
+  EXPECT_NEAR(exposureFromHistogram(exposureHistogram(lit, 2, 2, 2e4)).log2Luminance, std::log2(2e-6), 0.07);
+  EXPECT_NEAR(exposureFromHistogram(exposureHistogram(lit, 2, 2, 1.0)).log2Luminance, std::log2(0.02), 0.07);
+}
+
+// What auto exposure shows (exposureDisplayScale): a pixel of geometry or sky at the frame's
+// exposure; the stars' share at kExposureStarExposure whatever the frame's; the city lights' at
+// the smaller of the frame's and kExposureLightsExposure, the fixed default the preset's gain is
+// set for, so that a night sky's exposure of 10^5 does not blow them out. An alpha in neither
+// mark's range (a ring or the sea blended over a mark) is geometry.
+TEST(Exposure, StarsAndCityLightsTakeExposuresOfTheirOwn) {
+  using gpu::kExposureComposedAlpha;
+  using gpu::kExposureLightsAlpha;
+  using gpu::kExposureLightsExposure;
+  using gpu::kExposureStarExposure;
+  for (double exposure : {2.0, 1e3, 1e5}) {
+    EXPECT_DOUBLE_EQ(exposureDisplayScale(exposure, 1.0f), exposure);
+    EXPECT_DOUBLE_EQ(exposureDisplayScale(exposure, kExposureComposedAlpha), exposure);
+    EXPECT_DOUBLE_EQ(exposureDisplayScale(exposure, -0.5f), kExposureStarExposure);
+    EXPECT_NEAR(exposureDisplayScale(exposure, kExposureComposedAlpha + 0.5f),
+                0.5 * exposure + 0.5 * kExposureStarExposure, 1e-6 * exposure);
+    const double lights = std::min(exposure, double(kExposureLightsExposure));
+    EXPECT_DOUBLE_EQ(exposureDisplayScale(exposure, kExposureLightsAlpha + 1.0f), lights);
+    EXPECT_NEAR(exposureDisplayScale(exposure, kExposureLightsAlpha + 0.25f), 0.75 * exposure + 0.25 * lights,
+                1e-6 * exposure);
+    EXPECT_DOUBLE_EQ(exposureDisplayScale(exposure, 3.5f), exposure);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -208,6 +239,7 @@ TEST_F(ExposureGpu, LuminancePassMatchesTheCpuReference) {
     glm::vec4 c(l * tint(random), l, l * tint(random), 0.0f);
     if (i % 10 == 3) c.a = gpu::kExposureComposedAlpha + share(random);  // composed, some of it stars'
     if (i % 10 == 7) c.a = -share(random);                               // stars where none composed
+    if (i % 10 == 5) c.a = gpu::kExposureLightsAlpha + share(random);    // city lights, some of the light
     frame.push_back(c);
   }
   vk::Image image =
@@ -217,9 +249,10 @@ TEST_F(ExposureGpu, LuminancePassMatchesTheCpuReference) {
   {
     LuminancePass pass(context());
     pass.setSource(image);
+    pass.setLightsGain(3e4);
     vk::submitAndWait(context(), [&](VkCommandBuffer cmd) { pass.record(cmd, 1, -1.0, nullptr); });
     const ExposureHistogram gpuHistogram = pass.readHistogram();
-    const ExposureHistogram cpuHistogram = exposureHistogram(frame, extent.width, extent.height);
+    const ExposureHistogram cpuHistogram = exposureHistogram(frame, extent.width, extent.height, 3e4);
     const uint64_t blocks = uint64_t((extent.width + 1) / 2) * ((extent.height + 1) / 2);
     uint64_t total = 0, moved = 0;
     for (uint32_t b = 0; b < kExposureBins; ++b) {
@@ -272,10 +305,10 @@ DisplayStats displayStats(const Rgba8Image& image, uint32_t y0 = 0, uint32_t y1 
 // What the frame's luminance pass reported equals the CPU reference over the same HDR frame
 // (read back after the compose pass): the bins of a few pixels may differ at a bin edge (last
 // bit of log2), which moves the average by far less than 1/100 stop.
-void expectReportMatchesCpu(const RenderResult& frame, const char* name) {
+void expectReportMatchesCpu(const RenderResult& frame, double lightsGain, const char* name) {
   ASSERT_TRUE(frame.exposure.has_value()) << name;
   const ExposureReport cpu =
-      exposureFromHistogram(exposureHistogram(frame.hdr, frame.image.width, frame.image.height));
+      exposureFromHistogram(exposureHistogram(frame.hdr, frame.image.width, frame.image.height, lightsGain));
   EXPECT_NEAR(frame.exposure->log2Luminance, cpu.log2Luminance, 0.01) << name;
   EXPECT_NEAR(std::log2(frame.exposure->exposure / cpu.exposure), 0.0, 0.01) << name;
 }
@@ -312,7 +345,7 @@ TEST_F(ExposureGpu, AutoExposureBringsTwilightAndNightIntoView) {
     const SunPose sun{30.0, c.sunElevationDeg};
     renderer.setAutoExposure(true);
     const RenderResult automatic = renderer.render(kValley, sun, 0.0, true);
-    expectReportMatchesCpu(automatic, c.name);
+    expectReportMatchesCpu(automatic, earth.lights.gain, c.name);
     renderer.setAutoExposure(false);
     const RenderResult fixed = renderer.render(kValley, sun);
     EXPECT_FALSE(fixed.exposure.has_value());
@@ -375,10 +408,10 @@ TEST_F(ExposureGpu, TwilightGroundTakesTheSkyLightOfItsOwnSunElevation) {
 }
 
 // City lights (issue 14) at night under auto exposure, from 30 km over lit lowland near a coast
-// looking 30° down: the lights raise the frame's measured luminance by at least 3 stops (3.7
-// today) over the same frame without them and show at the display (mean at least 0.06; 0.093
-// today: they cover a third of the frame), where without them it is the black of a night with
-// stars (mean below 0.03; 0.003 today).
+// looking 30° down: the lights raise the frame's measured luminance (at their physical radiance)
+// by at least 3 stops (4.5 today) over the same frame without them and show at the display
+// (mean at least 0.06; 0.090 today: they cover a third of the frame), where without them it is
+// the black of a night with stars (mean below 0.03; 0.003 today).
 TEST_F(ExposureGpu, CityLightsKeepTheNightInView) {
   const PlanetDescription earth = resolvePreset("earth");
   Renderer renderer(context(), earth, smallSettings(true));
@@ -389,9 +422,59 @@ TEST_F(ExposureGpu, CityLightsKeepTheNightInView) {
   const RenderResult dark = renderer.render(overCities, night);
   writePng((testOutputDir() / "exposure_night_lights_auto.png").string(), lit.image);
   ASSERT_TRUE(lit.exposure && dark.exposure);
+  std::printf("[ measured ] lights raise the measurement %.2f stops; display mean %.3f with them, %.3f without\n",
+              lit.exposure->log2Luminance - dark.exposure->log2Luminance, displayStats(lit.image).mean,
+              displayStats(dark.image).mean);
   EXPECT_GE(lit.exposure->log2Luminance - dark.exposure->log2Luminance, 3.0);
   EXPECT_GE(displayStats(lit.image).mean, 0.06);
   EXPECT_LT(displayStats(dark.image).mean, 0.03);
+}
+
+// City lights from orbit under auto exposure (400 km over the same coast at night, looking 20°
+// down toward the limb): the exposure is the night sky's (the airglow over the disc, about 10^6),
+// and the lights, drawn 3·10^4 times over their physical radiance for the fixed exposure, blew
+// out white under it (246 of the 347 lit pixels below the limb, red over blue 1.2). Shown as at
+// kExposureLightsExposure they are orange, as in photographs from the ISS: none of the lit pixels
+// is white (each channel 200 or more), red at least three times blue (11.8 measured).
+// Without the lights the same pixels are black: what shows is theirs.
+TEST_F(ExposureGpu, CityLightsFromOrbitAreOrangeNotBlownOut) {
+  const PlanetDescription earth = resolvePreset("earth");
+  RenderSettings settings = smallSettings(true);
+  settings.width = 320;
+  settings.height = 180;
+  Renderer renderer(context(), earth, settings);
+  const CameraPose orbit{2.0, -28.0, 4.0e5, 0.0, -20.0};
+  const SunPose night{30.0, -30.0};
+  const RenderResult lit = renderer.render(orbit, night);
+  renderer.terrain().setLightsEnabled(false);
+  const RenderResult dark = renderer.render(orbit, night);
+  writePng((testOutputDir() / "exposure_lights_orbit_auto.png").string(), lit.image);
+  ASSERT_TRUE(lit.exposure.has_value());
+  EXPECT_GT(lit.exposure->exposure, 1e5) << "the night sky's exposure";
+  // The rows below the limb (and the lit air over it, on the right).
+  auto count = [](const Rgba8Image& image, uint32_t& litPixels, uint32_t& white, double& red, double& blue) {
+    litPixels = white = 0;
+    red = blue = 0.0;
+    for (uint32_t y = 115; y < image.height; ++y)
+      for (uint32_t x = 0; x < image.width; ++x) {
+        const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+        if (std::max({p[0], p[1], p[2]}) <= 40) continue;
+        ++litPixels;
+        white += std::min({p[0], p[1], p[2]}) >= 200 ? 1 : 0;
+        red += p[0];
+        blue += p[2];
+      }
+  };
+  uint32_t litPixels = 0, white = 0, darkLit = 0, darkWhite = 0;
+  double red = 0.0, blue = 0.0, darkRed = 0.0, darkBlue = 0.0;
+  count(lit.image, litPixels, white, red, blue);
+  count(dark.image, darkLit, darkWhite, darkRed, darkBlue);
+  std::printf("[ measured ] exposure %.3g: %u lit pixels, %u white, red / blue %.2f; %u lit without the lights\n",
+              lit.exposure->exposure, litPixels, white, red / std::max(blue, 1.0), darkLit);
+  EXPECT_GE(litPixels, 50u) << "cities in view";
+  EXPECT_EQ(white, 0u);
+  EXPECT_GE(red, 3.0 * blue);
+  EXPECT_LE(darkLit, litPixels / 20);
 }
 
 // Stars under auto exposure, at night over the sea looking 20° up (nothing but the night sky):

@@ -77,6 +77,7 @@ planet_label_heavy(gpu
   CloudShapes.NoBrightSpecksAtDistance
   ExposureGpu.AutoExposureBringsTwilightAndNightIntoView
   ExposureGpu.CityLightsKeepTheNightInView
+  ExposureGpu.CityLightsFromOrbitAreOrangeNotBlownOut
   ExposureGpu.StarsStayVisibleAndUnsaturatedAtNight
   ExposureGpu.AutoExposureRenderIsTheSameEveryTime
   ExposureGpu.ViewerAdaptationFollowsTheCpuStep

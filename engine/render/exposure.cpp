@@ -24,10 +24,14 @@ struct ExposureKernel {
 
 }  // namespace
 
-ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height) {
+float exposureLightsPhysical(double lightsGain) { return lightsGain > 0.0 ? float(1.0 / lightsGain) : 1.0f; }
+
+ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height,
+                                    double lightsGain) {
   if (hdr.size() != size_t(width) * height)
     throw Error(fmt::format("an HDR frame of {}x{} has {} pixels, not {}", width, height, size_t(width) * height,
                             hdr.size()));
+  const float lightsPhysical = exposureLightsPhysical(lightsGain);
   ExposureKernel kernel;
   ExposureHistogram histogram{};
   for (uint32_t by = 0; by < height; by += 2)
@@ -37,7 +41,7 @@ ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t wid
       for (uint32_t y = by; y < std::min(by + 2, height); ++y)
         for (uint32_t x = bx; x < std::min(bx + 2, width); ++x) {
           const glm::vec4& c = hdr[size_t(y) * width + x];
-          sum += kernel.exposureSceneLuminance(c.r, c.g, c.b, c.a);
+          sum += kernel.exposureSceneLuminance(c.r, c.g, c.b, c.a, lightsPhysical);
           count += 1.0f;
         }
       ++histogram[kernel.exposureBin(sum / count)];
@@ -60,6 +64,11 @@ ExposureReport exposureFromHistogram(const ExposureHistogram& histogram) {
   report.target = report.exposure = kernel.exposureForLuminance(float(report.log2Luminance));
   report.pixels = weight;
   return report;
+}
+
+double exposureDisplayScale(double exposure, float alpha) {
+  ExposureKernel kernel;
+  return kernel.exposureDisplayScale(float(exposure), alpha);
 }
 
 double adaptExposure(double current, double target, double stepS) {

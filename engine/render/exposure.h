@@ -3,7 +3,8 @@
 // and the viewer's adaptation step, for tests and for anyone checking a frame's exposure.
 //
 // The method: a histogram of log2 luminance (8 bins a stop) of the composed HDR frame at half
-// resolution (2 × 2 means), less the stars' light (the share alpha gives); black
+// resolution (2 × 2 means), less the stars' light, with the city lights' at their physical
+// radiance (the shares alpha gives); black
 // pixels (below 2^−32: space, the night sky between the stars) are not measured; of the rest,
 // the mean log2 luminance of those ranked between 50 % and 98 % (the darker half goes: deep
 // shadow; the top 2 %: the sun's disc, glints); the exposure that maps that luminance to the key
@@ -32,10 +33,19 @@ struct ExposureReport {
 };
 
 // The histogram of a width × height HDR frame (rgb linear, alpha which share of the light is the
-// stars', shared/exposure_params.h; rows top first), as
-// the GPU bins it: one count per 2 × 2 block of pixels (their mean luminance; the blocks at the
-// right and bottom edges of an odd size hold the pixels inside the frame).
-ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height);
+// stars' or the city lights', shared/exposure_params.h; rows top first), as the GPU bins it: one
+// count per 2 × 2 block of pixels (their mean luminance; the blocks at the right and bottom edges
+// of an odd size hold the pixels inside the frame). `lightsGain` is the city lights' (the
+// preset's `[lights] gain`): their light counts divided by it, at its physical radiance.
+ExposureHistogram exposureHistogram(std::span<const glm::vec4> hdr, uint32_t width, uint32_t height,
+                                    double lightsGain = 1.0);
+// What the measurement multiplies city lights' drawn light by: 1 / their gain (1 for a gain of 0,
+// which draws none).
+float exposureLightsPhysical(double lightsGain);
+// The scale auto exposure gives a pixel of HDR alpha `alpha` before the tonemap's curve, for the
+// frame's `exposure`: the stars' and the city lights' shares of it at exposures of their own
+// (shaders/common/exposure.glsl, exposureDisplayScale).
+double exposureDisplayScale(double exposure, float alpha);
 // The trimmed log-average and the exposure for it (no adaptation: exposure == target).
 ExposureReport exposureFromHistogram(const ExposureHistogram& histogram);
 // One adaptation step of `stepS` seconds from `current` toward `target` (shaders/common/exposure.glsl).

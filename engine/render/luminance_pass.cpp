@@ -89,7 +89,7 @@ void LuminancePass::record(VkCommandBuffer cmd, uint32_t slot, double stepS, vk:
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   gpu::ExposurePush push{};
-  push.frame = glm::vec4(float(width_), float(height_), float(stepS), 0.0f);
+  push.frame = glm::vec4(float(width_), float(height_), float(stepS), lightsPhysical_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot], 0, nullptr);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, histogramPipeline_.get());

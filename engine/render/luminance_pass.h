@@ -35,6 +35,9 @@ class LuminancePass {
   // Points the pass at the HDR colour it reads (storage image, GENERAL); call again when it is
   // recreated. The exposure carried over frames stays.
   void setSource(const vk::Image& hdr);
+  // The city lights' gain (the preset's `[lights] gain`, 1 without lights): the measurement
+  // counts their light divided by it (shared/exposure_params.h).
+  void setLightsGain(double gain) { lightsPhysical_ = exposureLightsPhysical(gain); }
   // Records both dispatches for frame slot `slot`, with the HDR frame in GENERAL after the
   // compose pass's writes (the pass's first barrier orders them). `stepS`: seconds since the
   // last frame this pass adapted, for the viewer's adaptation; negative: this frame's exposure
@@ -53,6 +56,7 @@ class LuminancePass {
  private:
   vk::Context& context_;
   uint32_t width_ = 0, height_ = 0;
+  float lightsPhysical_ = 1.0f;
   // In the order of creation (destroyed in reverse).
   vk::Owned<vk::Buffer> histogram_;
   vk::Owned<vk::Buffer> state_;

@@ -85,6 +85,13 @@ Renderer::Renderer(vk::Context& context, const std::vector<PlanetDescription>& b
   }
   // Made whether or not the frames adapt, so that the viewer can switch without a rebuild.
   luminance_ = std::make_unique<LuminancePass>(context);
+  // The measurement counts city lights at their physical radiance: the first body's with lights
+  // (one gain for the frame; of the presets only Earth has them).
+  for (const PlanetDescription& planet : bodies)
+    if (planet.lights.enabled) {
+      luminance_->setLightsGain(planet.lights.gain);
+      break;
+    }
   tonemap_ = std::make_unique<TonemapPass>(context, kColorFormat, settings.sky.exposure, luminance_->exposure());
   tonemap_->setAdapting(settings.autoExposure);
   createTargets();

@@ -14,12 +14,36 @@ real exposureLuminance(real r, real g, real b) { return 0.2126f * r + 0.7152f * 
 // exposure_params.h says how it is written).
 real exposureStarShare(real alpha) {
   if (alpha < 0.0f) return 1.0f;
-  return alpha >= kExposureComposedAlpha ? min(alpha - kExposureComposedAlpha, 1.0f) : 0.0f;
+  return alpha >= kExposureComposedAlpha && alpha <= kExposureComposedAlpha + 1.0f ? alpha - kExposureComposedAlpha
+                                                                                     : 0.0f;
 }
 
-// The luminance the exposure is measured on: the pixel's, less the stars' share of it.
-real exposureSceneLuminance(real r, real g, real b, real alpha) {
-  return exposureLuminance(r, g, b) * (1.0f - exposureStarShare(alpha));
+// The share of a pixel's light that is city lights', from the same alpha.
+real exposureLightsShare(real alpha) {
+  return alpha >= kExposureLightsAlpha && alpha <= kExposureLightsAlpha + 1.0f ? alpha - kExposureLightsAlpha : 0.0f;
+}
+
+// The alpha that marks a pixel whose light is `lightsShare` city lights' (0 .. 1): `otherwise`
+// where it has none.
+real exposureLightsMark(real lightsShare, real otherwise) {
+  return lightsShare > 0.0f ? kExposureLightsAlpha + min(lightsShare, 1.0f) : otherwise;
+}
+
+// The luminance the exposure is measured on: the pixel's, less the stars' share of it, with the
+// city lights' share at their physical radiance (lightsPhysical: 1 / their gain).
+real exposureSceneLuminance(real r, real g, real b, real alpha, real lightsPhysical) {
+  real lights = exposureLightsShare(alpha);
+  return exposureLuminance(r, g, b) * (1.0f - exposureStarShare(alpha) - lights * (1.0f - lightsPhysical));
+}
+
+// The scale auto exposure gives a pixel before the tonemap's curve: the frame's `exposure`, the
+// stars' share of its light as at kExposureStarExposure, the city lights' as at the smaller of
+// the frame's and kExposureLightsExposure.
+real exposureDisplayScale(real exposure, real alpha) {
+  real stars = exposureStarShare(alpha);
+  real lights = exposureLightsShare(alpha);
+  return exposure * (1.0f - stars - lights) + kExposureStarExposure * stars +
+         min(exposure, kExposureLightsExposure) * lights;
 }
 
 // The histogram bin of a luminance: 0 below 2^kExposureMinLog2 (and for NaN), then

@@ -55,6 +55,22 @@ GPU_CONST float kExposureMax = 2097152.0f;
 // 1 .. 2 where it covers much: the stars seen through it take the frame's exposure.
 GPU_CONST float kExposureStarExposure = 64.0f;
 GPU_CONST float kExposureComposedAlpha = 2.0f;
+// City lights likewise (common/city_lights.glsl): the preset's gain draws them 3·10⁴ times over
+// their physical radiance, so that the fixed default exposure (10) shows them as a night
+// photograph does; under the exposure a night sky sets (10⁵ .. 2²¹) they blew out white. So under
+// auto exposure their share of a pixel's light is shown as at the smaller of the frame's exposure
+// and kExposureLightsExposure, and the measurement counts it at its physical radiance
+// (ExposurePush::frame.w): the eye adapts to the light around it, and sees a city's lamps, points
+// far brighter than the pixel's mean, as bright whatever it adapted to. 64 puts a lit city core
+// (60 nW cm⁻² sr⁻¹ times the gain) at 2.3 before the curve: orange with a yellow-white heart, as
+// photographs from the air and from the ISS show cities. The terrain writes kExposureLightsAlpha
+// plus the lights' share of its pixel's light where they shine (1 elsewhere); each compose passes
+// on the share of what it composed. The sea blended over them before a compose loses the mark
+// (the compose then writes its own: the pixel takes the frame's exposure); blended after the last
+// compose (an airless body's sea, the camera's body's ring) the alpha may read as another mark,
+// as it may for the stars.
+GPU_CONST float kExposureLightsExposure = 64.0f;
+GPU_CONST float kExposureLightsAlpha = 4.0f;
 // Adaptation time constants of the viewer (seconds): the exposure rises (toward a darker scene)
 // slower than it falls (toward a brighter one), as the eye's does.
 GPU_CONST float kExposureRiseTimeS = 1.5f;
@@ -74,7 +90,7 @@ GPU_ASSERT_SIZE(ExposureState, 16)
 
 struct ExposurePush {
   vec4 frame;  // x: width, y: height (pixels), z: seconds since the last adapted frame (< 0: take the target
-               // outright), w: unused
+               // outright), w: 1 / the city lights' gain (their drawn light times this is their physical light)
 };
 GPU_ASSERT_SIZE(ExposurePush, 16)
 
