@@ -9,6 +9,7 @@
 #   - the moon and mars presets from the ground, the moon from orbit;
 #   - the system (issue 8) and its eclipses (issue 23);
 #   - earth's city lights at night from orbit, at dusk, and from 30 km; its airglow from 400 km;
+#     at auto exposure, its cities from 400 km and the terminator from 12,000 km;
 #   - issue 11's matrix: earth, mars and the moon at five altitudes, noon and low sun (half size);
 #   - seed 000's figures remade (issue 13): random faults after 1, 10, 100 and 1,000 steps,
 #     midpoint displacement after 1, 3, 5 and 7 levels, and its eight colouring schemes;
@@ -57,6 +58,10 @@ render lights_night_orbit --camera 20,-30,1.2e7 --sun 135,-60
 render lights_dusk_orbit --camera 20,-30,1.2e7 --sun 135,-3
 render lights_night_30km --camera 2,-28,3e4,0,-30 --sun 30,-30
 render airglow_orbit --camera 0,-150,4e5,0,-12 --sun 30,-60 --exposure auto
+# At auto exposure (the viewer's): a coast's cities from 400 km under the airglow, and the
+# terminator from 12,000 km with the night side exposed for its lights.
+render lights_400km_auto --camera 2,-28,4e5,0,-20 --sun 30,-30 --exposure auto
+render terminator_orbit_auto --camera 20,-30,1.2e7 --sun 30,-30 --exposure auto
 # The system (planet render --scene system, issue 8): from the Moon's surface to Terra's, at one
 # time: Terra in the Moon's sky, Terra from 1,000 km above the Moon and from 30,000 km, 400 km
 # over Terra, and the ringed giant with the Moon in Terra's afternoon sky.
