@@ -284,6 +284,14 @@ RenderSettings smallSettings(bool autoExposure) {
   return settings;
 }
 
+// smallSettings at 320 × 180, for views whose subject (stars, a city) is a pixel or two at 160 × 90.
+RenderSettings largerSettings(bool autoExposure) {
+  RenderSettings settings = smallSettings(autoExposure);
+  settings.width = 320;
+  settings.height = 180;
+  return settings;
+}
+
 // Mean Rec. 709 luma of the display values (0..1) of a frame, and its pixels at 250 or more.
 struct DisplayStats {
   double mean = 0.0;
@@ -439,10 +447,7 @@ TEST_F(ExposureGpu, CityLightsKeepTheNightInView) {
 // Without the lights the same pixels are black: what shows is theirs.
 TEST_F(ExposureGpu, CityLightsFromOrbitAreOrangeNotBlownOut) {
   const PlanetDescription earth = resolvePreset("earth");
-  RenderSettings settings = smallSettings(true);
-  settings.width = 320;
-  settings.height = 180;
-  Renderer renderer(context(), earth, settings);
+  Renderer renderer(context(), earth, largerSettings(true));
   const CameraPose orbit{2.0, -28.0, 4.0e5, 0.0, -20.0};
   const SunPose night{30.0, -30.0};
   const RenderResult lit = renderer.render(orbit, night);
@@ -483,10 +488,7 @@ TEST_F(ExposureGpu, CityLightsFromOrbitAreOrangeNotBlownOut) {
 // pixels saturates).
 TEST_F(ExposureGpu, StarsStayVisibleAndUnsaturatedAtNight) {
   const PlanetDescription earth = resolvePreset("earth");
-  RenderSettings settings = smallSettings(true);
-  settings.width = 320;
-  settings.height = 180;
-  Renderer renderer(context(), earth, settings);
+  Renderer renderer(context(), earth, largerSettings(true));
   const CameraPose pose{20.0, -30.0, 2.0, 135.0, 20.0};
   const SunPose night{135.0, -30.0};
   const RenderResult automatic = renderer.render(pose, night);
