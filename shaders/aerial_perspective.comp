@@ -51,19 +51,19 @@ void main() {
   // the ray of its vertical plane that just meets the ground sphere: the limb's, whose light the
   // pixels at the disc's edge, which the filter blends with this column's, nearly have. Left
   // empty it pulled their light toward none, and the transmittance toward 1.
-  vec2 ownStretch = atmosphereStretch(a, h, dir.z, hGround);
-  if (aerialFromAbove() && !(ownStretch.y > ownStretch.x)) {
+  vec2 stretch = atmosphereStretch(a, h, dir.z, hGround);
+  if (aerialFromAbove() && !(stretch.y > stretch.x)) {
     float ratio = (R + hGround) / (R + h);
     float muLimb = -sqrt(max(1.0f - ratio * ratio, 0.0f)) - 1.0e-4f;
     float across = length(dir.xy);
     vec2 side = across > 1.0e-6f ? dir.xy / across : vec2(1.0f, 0.0f);
     dir = vec3(side * sqrt(1.0f - muLimb * muLimb), muLimb);
+    stretch = atmosphereStretch(a, h, dir.z, hGround);
   }
   float mu = dir.z;
   float muS = sky.sunLocal.z;
   float nu = dot(dir, sky.sunLocal.xyz);
-  vec2 stretch = atmosphereStretch(a, h, mu, hGround);
-  vec2 columnStretch = aerialColumnStretch(R, h, mu, hGround);
+  vec2 columnStretch = aerialColumnStretchOf(stretch, raySphere(R, h, mu, hGround), R, h, mu);
   bool air = a.radii.w > 0.5f && stretch.y > stretch.x;
 
   // The march starts where the ray enters the air, its distances counted from there.

@@ -10,18 +10,20 @@
 // Rec. 709 luminance of linear RGB (the HDR target's primaries).
 real exposureLuminance(real r, real g, real b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
 
+// The share an HDR alpha of mark + share (0 .. 1) holds; 0 for an alpha outside that range.
+real exposureMarkedShare(real alpha, real mark) {
+  return alpha >= mark && alpha <= mark + 1.0f ? alpha - mark : 0.0f;
+}
+
 // The share of a pixel's light that is the stars', from the HDR frame's alpha (shared/
 // exposure_params.h says how it is written).
 real exposureStarShare(real alpha) {
   if (alpha < 0.0f) return 1.0f;
-  return alpha >= kExposureComposedAlpha && alpha <= kExposureComposedAlpha + 1.0f ? alpha - kExposureComposedAlpha
-                                                                                     : 0.0f;
+  return exposureMarkedShare(alpha, kExposureComposedAlpha);
 }
 
 // The share of a pixel's light that is city lights', from the same alpha.
-real exposureLightsShare(real alpha) {
-  return alpha >= kExposureLightsAlpha && alpha <= kExposureLightsAlpha + 1.0f ? alpha - kExposureLightsAlpha : 0.0f;
-}
+real exposureLightsShare(real alpha) { return exposureMarkedShare(alpha, kExposureLightsAlpha); }
 
 // The alpha that marks a pixel whose light is `lightsShare` city lights' (0 .. 1): `otherwise`
 // where it has none.
