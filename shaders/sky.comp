@@ -16,7 +16,7 @@
 // - the sun's disc, and the stars faded by the brightness of the sky in front of them;
 // - eclipses (common/eclipse.glsl): the scene's other bodies hide the sun from the air and the
 //   clouds (the reference march per sample, the tables per sample of the aerial-perspective
-//   volume and, for the sky-view table, skyEclipse below).
+//   volume and, for the sky-view table, skyEclipse in sky_compose.glsl).
 // Results are written back in place (each invocation reads and writes only its own pixel).
 #extension GL_GOOGLE_include_directive : require
 
@@ -106,31 +106,6 @@ void upsampledClouds(ivec2 pixel, ViewRay ray, bool clear, out vec3 composite, o
 }
 #endif
 
-// The sky along the whole ray from the sky-view table (black where the ray misses the air).
-vec3 skyViewRadiance(vec3 dir, vec3 sun, float h, float hGround) {
-  vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
-  float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
-  if (theta < range.x) return vec3(0.0f);
-  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sun.xy, 0.0f)), 0.0f).rgb;
-}
-
-// The share of the sun seen by the air along a ray that met no geometry, for the sky-view table,
-// which has no place along the ray to hold an eclipse: the mean over four points of the ray's
-// stretch through the air, spread as the table's steps are (gathered toward the camera from
-// inside the air, even from above it). From inside an eclipse's shadow the whole sky darkens
-// with it (the horizon's glow from outside the shadow is missed); from orbit the limb does where
-// the shadow crosses it.
-float skyEclipse(vec3 dir, vec2 stretch, bool fromInside) {
-  if (!(stretch.y > stretch.x) || !(sky.eclipse.sun.y > 0.5f)) return 1.0f;
-  float sum = 0.0f;
-  for (uint k = 0u; k < 4u; ++k) {
-    float x = (float(k) + 0.5f) / 4.0f;
-    float t = stretch.x + (stretch.y - stretch.x) * (fromInside ? x * x : x);
-    sum += eclipseSunVisible(dir * t, sky.sunLocal.xyz, sky.eclipse);
-  }
-  return 0.25f * sum;
-}
-
 // The clouds' shadow on what was drawn at a pixel, as a factor of its light: on the share of it
 // that the target's alpha says still shows the ground (1 on the ground; the sea leaves only the
 // floor it shows through, WaterPass), since the sea shades its own light under the clouds.
@@ -208,7 +183,7 @@ void main() {
         marchStart = dir * t0;
         marchDirection = dir;
         vec3 segmentSingle, segmentLight, segmentTransmittance;
-        scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, false, segmentSingle, segmentLight, segmentTransmittance);
+        scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, kStepsEqual, segmentSingle, segmentLight, segmentTransmittance);
         inscatter += transmittance * segmentLight;
         transmittance *= segmentTransmittance;
       }
@@ -248,12 +223,13 @@ void main() {
     bool aerial = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : geometry && !pastAir;
 #endif
     if (aerial) {
-      aerialPerspective(uv, tGeometry, mu, columnStretch, inscatter, transmittance);
+      aerialPerspective(uv, ray, tGeometry, columnStretch, inscatter, transmittance);
     } else {
-      inscatter = skyViewRadiance(dir, sun, h, hGround);
+      inscatter = skyViewAlong(dir, h, hGround).rgb;
       // Toward the sun's disc, the stars and geometry past the air: the transmittance table
       // from where the ray enters the air (the ground case is set below).
-      inscatter *= skyEclipse(dir, stretch, h < a.radii.y);
+      uint spacing = h >= a.radii.y ? kStepsEqual : seesGround ? kStepsTowardEnd : kStepsTowardStart;
+      inscatter *= skyEclipse(dir, stretch, spacing);
       if (!seesGround && stretch.y > stretch.x) {
         float h0 = altitudeAlong(R, h, mu, stretch.x);
         float mu0 = clamp((r * mu + stretch.x) / (R + h0), -1.0f, 1.0f);

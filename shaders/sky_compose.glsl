@@ -182,36 +182,6 @@ vec3 transmittanceAlong(AtmosphereParams a, float h, float mu, float t, out floa
   return clamp(fromLow / max(fromHigh, vec3(1.0e-30f)), vec3(0.0f), vec3(1.0f));
 }
 
-// The tables' atmosphere between the camera and distance t along the pixel's ray (screen
-// position uv, zenith cosine mu): light scattered toward the camera and transmittance, from the
-// aerial-perspective volume filtered across its columns.
-// - The transmittance, from inside the air, is the pixel's own ray's from the transmittance table
-//   (transmittanceAlong); from above the air, and where the table cannot be trusted, the volume's
-//   optical depth filtered between the two slices around t (from above they split each column's
-//   own stretch through the air).
-// - The light, from inside the air, is the columns' at the pixel's opacity 1 − T (green), which
-//   indexes the light's volume (from above, distance does, as for the depth). The light gathered
-//   along a ray grows with its opacity at the rate of the air's own light, which changes slowly,
-//   so it is close to linear between the volume's opacity levels, and the columns agree at equal
-//   opacity where their rays have crossed different distances of different air. Held by distance
-//   and filtered between slices, the light and the transmittance fell short of the march where
-//   the air thickens along the ray (a slice near the camera is long next to the haze's scale
-//   height): by 6 to 8 of 255 on the sea seen from 10 to 30 km at sunset, in bands at the slices.
-void aerialPerspective(vec2 uv, float t, float mu, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
-  // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
-  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
-  vec3 bySlice = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
-  float trust = 0.0f;
-  if (!aerialFromAbove()) transmittance = transmittanceAlong(sky.atmosphere, sky.camera.x, mu, t, trust);
-  if (trust < 1.0f) {
-    vec3 byVolume = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
-    transmittance = trust > 0.0f ? mix(byVolume, transmittance, trust) : byVolume;
-  }
-  float level = (1.0f - transmittance.y) * float(kAerialSize);
-  vec3 byLevel = vec3(uv, (level + 0.5f) / float(kAerialSize + 1u));
-  light = aerialDecodeLight(textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f));
-}
-
 // The depths of the 2×2 pixels from `pixel` (one gather, in its component order: x (+0, +1),
 // y (+1, +1), z (+1, +0), w (+0, +0)); the depth sampler clamps to the image's edge.
 vec4 depthTexels(ivec2 pixel) { return textureGather(depthBuffer, vec2(pixel + 1) / sky.extent.xy); }
@@ -262,6 +232,105 @@ ViewRay viewRay(vec2 screenPoint, float depth) {
   ray.seesGround = mu < 0.0f && ray.groundHits.x >= 0.0f;
   ray.tEnd = ray.geometry ? ray.tGeometry : (ray.seesGround ? ray.groundHits.x : kInfinity);
   return ray;
+}
+
+// The sky-view table along a whole ray: rgb its light, alpha its opacity (green); none where the
+// ray misses the air.
+vec4 skyViewAlong(vec3 dir, float h, float hGround) {
+  vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
+  float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
+  if (theta < range.x) return vec4(0.0f);
+  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sky.sunLocal.xy, 0.0f)), 0.0f);
+}
+
+// The same for a ray from inside the air that meets the ground sphere, at zenith angle theta, with
+// the frame's horizon from the uniforms.
+vec4 skyViewAlongGround(vec3 dir, float theta) {
+  vec2 range = vec2(0.0f, sky.aerial.z);
+  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sky.sunLocal.xy, 0.0f)), 0.0f);
+}
+
+// The share of the sun seen by the air along a stretch of a ray, for the sky-view table, which has
+// no place along the ray to hold an eclipse: the mean over four points of the stretch (the ray's
+// through the air, or up to the sea it ends on), spaced as the table's steps are (`spacing`,
+// kStepsEqual, kStepsTowardStart or kStepsTowardEnd; common/atmosphere.glsl, skyAlong). From
+// inside an eclipse's shadow the whole sky darkens with it (the horizon's glow from outside the
+// shadow is missed); from orbit the limb does where the shadow crosses it.
+float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
+  if (!(stretch.y > stretch.x) || !(sky.eclipse.sun.y > 0.5f)) return 1.0f;
+  float sum = 0.0f;
+  for (uint k = 0u; k < 4u; ++k) {
+    float x = (float(k) + 0.5f) / 4.0f;
+    float f = spacing == kStepsTowardStart ? x * x : spacing == kStepsTowardEnd ? x * (2.0f - x) : x;
+    sum += eclipseSunVisible(dir * (stretch.x + (stretch.y - stretch.x) * f), sky.sunLocal.xyz, sky.eclipse);
+  }
+  return 0.25f * sum;
+}
+
+// The tables' atmosphere between the camera and distance t along the pixel's ray (screen
+// position uv, zenith cosine mu): light scattered toward the camera and transmittance, from the
+// aerial-perspective volume filtered across its columns.
+// - The transmittance, from inside the air, is the pixel's own ray's from the transmittance table
+//   (transmittanceAlong); from above the air, and where the table cannot be trusted, the volume's
+//   optical depth filtered between the two slices around t (from above they split each column's
+//   own stretch through the air).
+// - The light, from inside the air, is the columns' at the pixel's opacity 1 − T (green), which
+//   indexes the light's volume (from above, distance does, as for the depth). The light gathered
+//   along a ray grows with its opacity at the rate of the air's own light, which changes slowly,
+//   so it is close to linear between the volume's opacity levels, and the columns agree at equal
+//   opacity where their rays have crossed different distances of different air. Held by distance
+//   and filtered between slices, the light and the transmittance fell short of the march where
+//   the air thickens along the ray (a slice near the camera is long next to the haze's scale
+//   height): by 6 to 8 of 255 on the sea seen from 10 to 30 km at sunset, in bands at the slices.
+// - Except where, from inside the air, the ray ends on the ground sphere or near it: from
+//   kSkyViewGroundShareFrom of the distance to it (blended in up to kSkyViewGroundShareTo), with its
+//   end less than kSkyViewGroundHeightFrom above that sphere (blended out by
+//   kSkyViewGroundHeightTo) or within two rows of the volume's columns of the horizon. There the
+//   light is the sky-view table's along the pixel's own direction, whose rays end on that sphere,
+//   times the share of that ray's opacity the pixel's has (1 on the sea), with the eclipses along
+//   it (skyEclipse). The volume's columns are 17 pixels apart at 540 lines and cannot hold the
+//   horizon: seen from high up, a column just over it ends short of the ground's opacity with the
+//   light of the sunlit air beyond, and it lifted the ground under the horizon to the sky's
+//   brightness (from 60 km at twilight, 36.9 dB against the march, the worst row 15 of 255 off;
+//   from the table 49.2 dB). The table's rows gather toward the horizon, and the sea's haze from
+//   10 km at sunset follows the march within 61.2 dB (49.3 from the volume). Where the ray ends
+//   nearer, or on land higher up, its light does not grow with its opacity as the whole ray's
+//   does: the whole ray also crosses the haze under its end, which from 30 km over the Great
+//   Plains at sunset is orange, and the land took its colour (46.7 dB against the volume's 49.0;
+//   with the height limit 51.9). There the volume serves.
+void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
+  float mu = ray.dir.z;
+  // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
+  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
+  vec3 bySlice = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
+  float trust = 0.0f;
+  if (!aerialFromAbove()) transmittance = transmittanceAlong(sky.atmosphere, sky.camera.x, mu, t, trust);
+  if (trust < 1.0f) {
+    vec3 byVolume = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
+    transmittance = trust > 0.0f ? mix(byVolume, transmittance, trust) : byVolume;
+  }
+  float share = 0.0f;
+  float theta = atan(length(ray.dir.xy), mu);
+  if (!aerialFromAbove() && ray.seesGround) {
+    float above = altitudeAlong(sky.atmosphere.radii.x, sky.camera.x, mu, t) - ray.hGround;
+    // The horizon's distance in rows of the volume's columns.
+    float rows = (theta - sky.aerial.z) / (sky.extent.z * sky.extent.y / float(kAerialSize));
+    float low = max(1.0f - smoothstep(kSkyViewGroundHeightFrom, kSkyViewGroundHeightTo, above),
+                    1.0f - smoothstep(1.0f, 2.0f, rows));
+    share = smoothstep(kSkyViewGroundShareFrom, kSkyViewGroundShareTo, t / ray.groundHits.x) * low;
+  }
+  light = vec3(0.0f);
+  if (share < 1.0f) {
+    float level = (1.0f - transmittance.y) * float(kAerialSize);
+    vec3 byLevel = vec3(uv, (level + 0.5f) / float(kAerialSize + 1u));
+    light = aerialDecodeLight(textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f));
+  }
+  if (share > 0.0f) {
+    vec4 whole = skyViewAlongGround(ray.dir, theta);
+    float opacityShare = clamp((1.0f - transmittance.y) / max(whole.a, 1.0e-6f), 0.0f, 1.0f);
+    vec3 alongView = whole.rgb * opacityShare * skyEclipse(ray.dir, vec2(0.0f, t), kStepsTowardEnd);
+    light = mix(light, alongView, share);
+  }
 }
 
 // The compose's and the cloud pass's tiles by class (kSkyBindingTiles): written by

@@ -47,7 +47,7 @@ void main() {
     float r0 = R + h0;
     float mu0 = clamp((r * mu + tStart) / r0, -1.0f, 1.0f);
     float muS0 = clamp((r * muS + tStart * nu) / r0, -1.0f, 1.0f);
-    scatteringAlong(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.y), false, reference, referenceTotal,
+    scatteringAlong(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.y), kStepsEqual, reference, referenceTotal,
                     referenceTransmittance);
     singleScattering(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.z), single, transmittance);
     multiple = multipleScattering(a, h0, mu0, muS0, nu, tEnd - tStart, uint(push.counts.z));

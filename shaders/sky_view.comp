@@ -23,6 +23,8 @@ void main() {
   uvec2 texel = gl_GlobalInvocationID.xy;
   if (texel.x >= kSkyViewWidth || texel.y >= kSkyViewHeight) return;
   vec2 uv = (vec2(texel) + 0.5f) / vec2(kSkyViewWidth, kSkyViewHeight);
-  vec3 radiance = skyViewTexel(sky.atmosphere, sky.camera.x, sky.surface.z, sky.sunLocal.z, uv.x, uv.y);
-  imageStore(skyView, ivec2(texel), vec4(radiance, 0.0f));
+  vec3 transmittance;
+  vec3 radiance =
+      skyViewTexelAndTransmittance(sky.atmosphere, sky.camera.x, sky.surface.z, sky.sunLocal.z, uv.x, uv.y, transmittance);
+  imageStore(skyView, ivec2(texel), vec4(radiance, 1.0f - transmittance.y));
 }

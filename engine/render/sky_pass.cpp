@@ -408,7 +408,10 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // The ground's compose tiles clear of the clouds: sorted with the cloud tiles, which start at
   // the same corner; their pipeline reads the aerial volume as from inside the air.
   clearGroundTiles_ = clearCloudTiles_ && ownSurfacesOnly_ && !above;
-  u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), 0.0f, 0.0f);
+  // The zenith angle of the ground sphere's horizon, as skyViewZenithRange finds it (from inside the
+  // air its range starts at the zenith): the ground's half of the sky-view table's rows.
+  const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);
+  u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), float(horizonZenith), 0.0f);
   // The sky-view table: built again only when its inputs moved beyond the tolerances.
   const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
   const SkyViewInputs* built = skyViewBuiltFor_ ? &*skyViewBuiltFor_ : nullptr;

@@ -382,10 +382,9 @@ void scatteringStep(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, 
 }
 
 // Single (`single`) and single plus multiple (`total`) scattering toward the start of a segment of
-// length tMax, and its transmittance, in `steps` steps of scatteringStep: equal steps, or with
-// `quadratic` the step ends at tMax (i / steps)², short near the start where a view from inside
-// the air sees its densest part and long far away.
-void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real tMax, uint steps, bool quadratic,
+// length tMax, and its transmittance, in `steps` steps of scatteringStep spaced as `spacing` says
+// (kStepsEqual, kStepsTowardStart, kStepsTowardEnd: shared/sky_params.h).
+void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real tMax, uint steps, uint spacing,
                      OUT(vec3) single, OUT(vec3) total, OUT(vec3) transmittance) {
   real phaseR = rayleighPhase(nu);
   vec3 phaseM = miePhases(a, nu);
@@ -395,7 +394,8 @@ void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu,
   real tPrevious = real(0.0f);
   for (uint i = 0u; i < steps; ++i) {
     real x = real(i + 1u) / real(steps);
-    real t = tMax * (quadratic ? x * x : x);
+    real t = tMax * (spacing == kStepsTowardStart ? x * x
+                                                   : spacing == kStepsTowardEnd ? x * (real(2.0f) - x) : x);
     real dt = t - tPrevious;
     scatteringStep(a, h, mu, muS, nu, phaseR, phaseM, tPrevious + real(0.5f) * dt, dt, single, total, transmittance);
     tPrevious = t;
@@ -432,14 +432,17 @@ void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real h
   real h0 = altitudeAlong(R, h, mu, stretch.x);
   real mu0 = clamp((r * mu + stretch.x) / (R + h0), real(-1.0f), real(1.0f));
   real muS0 = clamp((r * muS + stretch.x * nu) / (R + h0), real(-1.0f), real(1.0f));
-  scatteringAlong(a, h0, mu0, muS0, nu, stretch.y - stretch.x, steps, h < real(a.radii.y), single, total,
-                  transmittance);
+  // From inside the air, toward the viewpoint; a ray that meets the ground, toward the ground.
+  real tExit = stretchInsideSphere(R, h, mu, real(a.radii.y)).y;
+  uint spacing = h >= real(a.radii.y) ? kStepsEqual : stretch.y < tExit ? kStepsTowardEnd : kStepsTowardStart;
+  scatteringAlong(a, h0, mu0, muS0, nu, stretch.y - stretch.x, steps, spacing, single, total, transmittance);
 }
 
 // The table's texel (u, v) in [0, 1] (texel centres at the ends of each range) for a viewpoint at
 // altitude h over the ground sphere at hGround and a sun at zenith cosine muS: the total sky
-// radiance along its direction, in kSkyViewSteps steps.
-vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u, real v) {
+// radiance along its direction, in kSkyViewSteps steps, and the transmittance along it.
+vec3 skyViewTexelAndTransmittance(IN(AtmosphereParams) a, real h, real hGround, real muS, real u, real v,
+                                  OUT(vec3) transmittance) {
   vec2 range = skyViewZenithRange(a, h, hGround);
   real theta = skyViewTheta(clamp(texelToUnit(v, real(kSkyViewHeight)), real(0.0f), real(1.0f)), range);
   real mu = cos(theta);
@@ -447,9 +450,13 @@ vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u
   real sinV = sqrt(max(real(1.0f) - mu * mu, real(0.0f)));
   real sinS = sqrt(max(real(1.0f) - muS * muS, real(0.0f)));
   real nu = clamp(mu * muS + sinV * sinS * cos(phi), real(-1.0f), real(1.0f));
-  vec3 single, total, transmittance;
+  vec3 single, total;
   skyAlong(a, h, mu, muS, nu, hGround, kSkyViewSteps, single, total, transmittance);
   return total;
+}
+vec3 skyViewTexel(IN(AtmosphereParams) a, real h, real hGround, real muS, real u, real v) {
+  vec3 transmittance;
+  return skyViewTexelAndTransmittance(a, h, hGround, muS, u, v, transmittance);
 }
 #endif
 

@@ -67,6 +67,13 @@ GPU_CONST uint kSkyTileLists = 6u;
 GPU_CONST uint kSkyViewWidth = 96u;
 GPU_CONST uint kSkyViewHeight = 108u;
 GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic from inside the air)
+// How a march (common/atmosphere.glsl, scatteringAlong) spaces its steps along a segment: equally;
+// gathered toward its start (step i ends at (i / steps)² of it), where a view from inside the air
+// sees its densest part; or toward its end (at 1 − (1 − i / steps)²), where a ray from high up
+// meets the ground under the haze.
+GPU_CONST uint kStepsEqual = 0u;
+GPU_CONST uint kStepsTowardStart = 1u;
+GPU_CONST uint kStepsTowardEnd = 2u;
 // Aerial-perspective volume: kAerialSize² columns over the screen, each with kAerialSize + 1
 // slices along its ray in two rgba16f 3D images: the air's optical depth τ = −ln T from the camera
 // to each slice's far end (the first the camera's, 0), and the light scattered toward the camera
@@ -80,6 +87,13 @@ GPU_CONST uint kAerialSize = 32u;
 GPU_CONST float kAerialLogFloor = 9.094947e-13f;  // 2^-40
 GPU_CONST float kAerialBlendExcess = 2.0f;
 GPU_CONST uint kAerialStepsPerSlice = 2u;
+// From inside the air, what a ray ends on at the second share of its distance to the ground
+// sphere or farther takes its light from the sky-view table (sky_compose.glsl, aerialPerspective,
+// says why), blended in from the first share.
+GPU_CONST float kSkyViewGroundShareFrom = 0.9f;
+GPU_CONST float kSkyViewGroundShareTo = 0.98f;
+GPU_CONST float kSkyViewGroundHeightFrom = 100.0f;
+GPU_CONST float kSkyViewGroundHeightTo = 400.0f;
 // Bindings of the per-frame table builds (set 0).
 GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (uniform buffer: sky_uniforms.glsl)
 GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D
@@ -157,7 +171,8 @@ struct SkyUniforms {
   vec4 aerial;   // slices of the aerial-perspective volume: x: 1 when the camera is above the top of the
                  // atmosphere (each column's slices split its own stretch through the air evenly), else 0
                  // (slice k ends at distance y · ((k + 1) / kAerialSize)²); y: that farthest distance (m);
-                 // z, w: unused
+                 // z: the zenith angle of the ground sphere's horizon (rad; sky_compose.glsl,
+                 // skyViewAlongGround); w: unused
   vec4 region;   // the passes' dispatches cover only where the air or the sun can show (SkyPass::prepare,
                  // skyRegion): x, y: the compose's first pixel; z, w: the cloud pass's first sample
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
