@@ -76,6 +76,30 @@ PlanetDescription clearEarth() {
   return earth;
 }
 
+// Earth without clouds from the tables and from the reference march at 320x180: the display
+// images' PSNR, and the largest difference between their rows' mean luminances (of 255).
+struct MarchComparison {
+  Rgba8Image tables;
+  double psnr = 0.0;
+  double worstRow = 0.0;
+};
+MarchComparison compareWithMarch(vk::Context& context, const CameraPose& camera, const SunPose& sun) {
+  RenderSettings settings;
+  settings.width = 320;
+  settings.height = 180;
+  RenderSettings reference = settings;
+  reference.sky.mode = SkyMode::Reference;
+  const PlanetDescription earth = clearEarth();
+  MarchComparison c;
+  c.tables = Renderer(context, earth, settings).render(camera, sun).image;
+  const Rgba8Image marched = Renderer(context, earth, reference).render(camera, sun).image;
+  for (uint32_t y = 0; y < 180; ++y)
+    c.worstRow = std::max(c.worstRow, std::abs(meanColor(c.tables, 0, y, 320, y + 1).luminance() -
+                                               meanColor(marched, 0, y, 320, y + 1).luminance()));
+  c.psnr = psnrRgb(c.tables, marched);
+  return c;
+}
+
 TEST_F(SkyRender, TransmittanceTableMatchesCpuReference) {
   for (const char* preset : {"earth", "mars"}) {
     const PlanetDescription planet = resolvePreset(preset);
@@ -496,21 +520,8 @@ TEST_F(SkyRender, TheTerminatorFromOrbitHasNoStepsAtTheNightSidesExposure) {
 // the horizon. The sea now takes its light from the sky-view table along its own direction
 // (sky_compose.glsl, aerialPerspective): measured 61.2 dB, the worst row 0.2 off.
 TEST_F(SkyRender, TheHazeOverTheSeaFollowsTheMarchWithoutBandsAtTheSlices) {
-  RenderSettings settings;
-  settings.width = 320;
-  settings.height = 180;
-  RenderSettings reference = settings;
-  reference.sky.mode = SkyMode::Reference;
-  const PlanetDescription earth = clearEarth();
-  const CameraPose airliner{35, -20, 1.0e4, 90, -5};
-  const SunPose sunset{90, 2};
-  const Rgba8Image a = Renderer(context(), earth, settings).render(airliner, sunset).image;
-  const Rgba8Image b = Renderer(context(), earth, reference).render(airliner, sunset).image;
-  double worstRow = 0.0;
-  for (uint32_t y = 0; y < 180; ++y)
-    worstRow = std::max(
-        worstRow, std::abs(meanColor(a, 0, y, 320, y + 1).luminance() - meanColor(b, 0, y, 320, y + 1).luminance()));
-  const double psnr = psnrRgb(a, b);
+  const MarchComparison c = compareWithMarch(context(), {35, -20, 1.0e4, 90, -5}, {90, 2});
+  const double psnr = c.psnr, worstRow = c.worstRow;
   std::printf("haze over the sea from 10 km at sunset: %.1f dB against the march, worst row %.2f of 255\n", psnr,
               worstRow);
   EXPECT_GE(psnr, 55.0);
@@ -525,27 +536,15 @@ TEST_F(SkyRender, TheHazeOverTheSeaFollowsTheMarchWithoutBandsAtTheSlices) {
 // The ground that ends near the ground sphere takes its light from the sky-view table, whose rows
 // gather at the horizon (measured 49.2 dB, the worst row 0.7 off).
 TEST_F(SkyRender, TheGroundUnderTheHorizonFrom60KmIsNotLitLikeTheSkyAboveIt) {
-  RenderSettings settings;
-  settings.width = 320;
-  settings.height = 180;
-  RenderSettings reference = settings;
-  reference.sky.mode = SkyMode::Reference;
-  const PlanetDescription earth = clearEarth();
-  const CameraPose high{20, -30, 6.0e4, 135, -10};
-  const SunPose twilight{135, -7};
-  const Rgba8Image a = Renderer(context(), earth, settings).render(high, twilight).image;
-  const Rgba8Image b = Renderer(context(), earth, reference).render(high, twilight).image;
-  double worstRow = 0.0;
-  for (uint32_t y = 0; y < 180; ++y)
-    worstRow = std::max(
-        worstRow, std::abs(meanColor(a, 0, y, 320, y + 1).luminance() - meanColor(b, 0, y, 320, y + 1).luminance()));
-  const double psnr = psnrRgb(a, b);
+  const MarchComparison c = compareWithMarch(context(), {20, -30, 6.0e4, 135, -10}, {135, -7});
+  const double psnr = c.psnr, worstRow = c.worstRow;
   std::printf("the horizon from 60 km at twilight: %.1f dB against the march, worst row %.2f of 255\n", psnr, worstRow);
   EXPECT_GE(psnr, 45.0);
   EXPECT_LT(worstRow, 3.0);
   // The twilight arch is in view (its brightest row 90 of 255): not one black image against another.
   double brightestRow = 0.0;
-  for (uint32_t y = 0; y < 180; ++y) brightestRow = std::max(brightestRow, meanColor(a, 0, y, 320, y + 1).luminance());
+  for (uint32_t y = 0; y < 180; ++y)
+    brightestRow = std::max(brightestRow, meanColor(c.tables, 0, y, 320, y + 1).luminance());
   EXPECT_GT(brightestRow, 50.0);
 }
 
