@@ -69,7 +69,8 @@ void airInFront(vec3 dir, float tRing, out vec3 light, out vec3 transmittance) {
   float muS0 = clamp((r * muS + stretch.x * nu) / (R + h0), -1.0f, 1.0f);
   vec3 single;
   // Quadratic steps from inside the air (its densest part is near the camera), equal from outside.
-  scatteringAlong(a, h0, mu0, muS0, nu, tEnd - stretch.x, kRingAirSteps, h < a.radii.y ? kStepsTowardStart : kStepsEqual, single, light, transmittance);
+  uint spacing = h < a.radii.y ? kStepsTowardStart : kStepsEqual;
+  scatteringAlong(a, h0, mu0, muS0, nu, tEnd - stretch.x, kRingAirSteps, spacing, single, light, transmittance);
 }
 #endif
 

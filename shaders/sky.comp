@@ -183,7 +183,8 @@ void main() {
         marchStart = dir * t0;
         marchDirection = dir;
         vec3 segmentSingle, segmentLight, segmentTransmittance;
-        scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, kStepsEqual, segmentSingle, segmentLight, segmentTransmittance);
+        scatteringAlong(a, h0, mu0, muS0, nu, t1 - t0, steps, kStepsEqual, segmentSingle, segmentLight,
+                        segmentTransmittance);
         inscatter += transmittance * segmentLight;
         transmittance *= segmentTransmittance;
       }
@@ -228,8 +229,7 @@ void main() {
       inscatter = skyViewAlong(dir, h, hGround).rgb;
       // Toward the sun's disc, the stars and geometry past the air: the transmittance table
       // from where the ray enters the air (the ground case is set below).
-      uint spacing = h >= a.radii.y ? kStepsEqual : seesGround ? kStepsTowardEnd : kStepsTowardStart;
-      inscatter *= skyEclipse(dir, stretch, spacing);
+      inscatter *= skyEclipse(dir, stretch, skyStepSpacing(a, h, seesGround));
       if (!seesGround && stretch.y > stretch.x) {
         float h0 = altitudeAlong(R, h, mu, stretch.x);
         float mu0 = clamp((r * mu + stretch.x) / (R + h0), -1.0f, 1.0f);

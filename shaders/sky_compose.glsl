@@ -234,26 +234,24 @@ ViewRay viewRay(vec2 screenPoint, float depth) {
   return ray;
 }
 
-// The sky-view table along a whole ray: rgb its light, alpha its opacity (green); none where the
-// ray misses the air.
+// The sky-view table's texel for direction dir at zenith angle theta, for the zenith range `range`
+// (skyViewZenithRange): rgb the light along the whole ray, alpha its opacity (green).
+vec4 skyViewAt(vec3 dir, float theta, vec2 range) {
+  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sky.sunLocal.xy, 0.0f)), 0.0f);
+}
+
+// The sky-view table along a whole ray (none where the ray misses the air).
 vec4 skyViewAlong(vec3 dir, float h, float hGround) {
   vec2 range = skyViewZenithRange(sky.atmosphere, h, hGround);
   float theta = atan(length(vec2(dir.x, dir.y)), dir.z);  // not acos (skyViewZenithRange says why)
   if (theta < range.x) return vec4(0.0f);
-  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sky.sunLocal.xy, 0.0f)), 0.0f);
-}
-
-// The same for a ray from inside the air that meets the ground sphere, at zenith angle theta, with
-// the frame's horizon from the uniforms.
-vec4 skyViewAlongGround(vec3 dir, float theta) {
-  vec2 range = vec2(0.0f, sky.aerial.z);
-  return textureLod(skyView, skyViewUv(theta, range, vec3(dir.xy, 0.0f), vec3(sky.sunLocal.xy, 0.0f)), 0.0f);
+  return skyViewAt(dir, theta, range);
 }
 
 // The share of the sun seen by the air along a stretch of a ray, for the sky-view table, which has
 // no place along the ray to hold an eclipse: the mean over four points of the stretch (the ray's
-// through the air, or up to the sea it ends on), spaced as the table's steps are (`spacing`,
-// kStepsEqual, kStepsTowardStart or kStepsTowardEnd; common/atmosphere.glsl, skyAlong). From
+// through the air, or up to the sea it ends on), spaced as the table's steps are (`spacing`:
+// common/atmosphere.glsl, skyStepSpacing). From
 // inside an eclipse's shadow the whole sky darkens with it (the horizon's glow from outside the
 // shadow is missed); from orbit the limb does where the shadow crosses it.
 float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
@@ -261,8 +259,8 @@ float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
   float sum = 0.0f;
   for (uint k = 0u; k < 4u; ++k) {
     float x = (float(k) + 0.5f) / 4.0f;
-    float f = spacing == kStepsTowardStart ? x * x : spacing == kStepsTowardEnd ? x * (2.0f - x) : x;
-    sum += eclipseSunVisible(dir * (stretch.x + (stretch.y - stretch.x) * f), sky.sunLocal.xyz, sky.eclipse);
+    float t = stretch.x + (stretch.y - stretch.x) * stepShare(x, spacing);
+    sum += eclipseSunVisible(dir * t, sky.sunLocal.xyz, sky.eclipse);
   }
   return 0.25f * sum;
 }
@@ -309,9 +307,9 @@ void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, out ve
     vec3 byVolume = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
     transmittance = trust > 0.0f ? mix(byVolume, transmittance, trust) : byVolume;
   }
-  float share = 0.0f;
-  float theta = atan(length(ray.dir.xy), mu);
+  float share = 0.0f, theta = 0.0f;
   if (!aerialFromAbove() && ray.seesGround) {
+    theta = atan(length(ray.dir.xy), mu);
     float above = altitudeAlong(sky.atmosphere.radii.x, sky.camera.x, mu, t) - ray.hGround;
     // The horizon's distance in rows of the volume's columns.
     float rows = (theta - sky.aerial.z) / (sky.extent.z * sky.extent.y / float(kAerialSize));
@@ -326,9 +324,10 @@ void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, out ve
     light = aerialDecodeLight(textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f));
   }
   if (share > 0.0f) {
-    vec4 whole = skyViewAlongGround(ray.dir, theta);
+    vec4 whole = skyViewAt(ray.dir, theta, vec2(0.0f, sky.aerial.z));  // inside the air: from the zenith
     float opacityShare = clamp((1.0f - transmittance.y) / max(whole.a, 1.0e-6f), 0.0f, 1.0f);
-    vec3 alongView = whole.rgb * opacityShare * skyEclipse(ray.dir, vec2(0.0f, t), kStepsTowardEnd);
+    float eclipse = skyEclipse(ray.dir, vec2(0.0f, t), skyStepSpacing(sky.atmosphere, sky.camera.x, true));
+    vec3 alongView = whole.rgb * opacityShare * eclipse;
     light = mix(light, alongView, share);
   }
 }

@@ -381,9 +381,23 @@ void scatteringStep(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, 
   transmittance = transmittance * vec3(exp(-stepDepth.x), exp(-stepDepth.y), exp(-stepDepth.z));
 }
 
+// Where the point at x (0 .. 1) of a segment's steps lies along it, as a share of its length, for
+// steps spaced as `spacing` says (kStepsEqual, kStepsTowardStart, kStepsTowardEnd:
+// shared/sky_params.h).
+real stepShare(real x, uint spacing) {
+  return spacing == kStepsTowardStart ? x * x : spacing == kStepsTowardEnd ? x * (real(2.0f) - x) : x;
+}
+
+// How the sky-view table spaces the steps of a ray from altitude h that meets the ground sphere or
+// not: equally from above the air; from inside it, toward the viewpoint, or, for a ray that meets
+// the ground, toward the ground, where the haze is.
+uint skyStepSpacing(IN(AtmosphereParams) a, real h, bool meetsGround) {
+  return h >= real(a.radii.y) ? kStepsEqual : meetsGround ? kStepsTowardEnd : kStepsTowardStart;
+}
+
 // Single (`single`) and single plus multiple (`total`) scattering toward the start of a segment of
 // length tMax, and its transmittance, in `steps` steps of scatteringStep spaced as `spacing` says
-// (kStepsEqual, kStepsTowardStart, kStepsTowardEnd: shared/sky_params.h).
+// (stepShare).
 void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real tMax, uint steps, uint spacing,
                      OUT(vec3) single, OUT(vec3) total, OUT(vec3) transmittance) {
   real phaseR = rayleighPhase(nu);
@@ -394,8 +408,7 @@ void scatteringAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu,
   real tPrevious = real(0.0f);
   for (uint i = 0u; i < steps; ++i) {
     real x = real(i + 1u) / real(steps);
-    real t = tMax * (spacing == kStepsTowardStart ? x * x
-                                                   : spacing == kStepsTowardEnd ? x * (real(2.0f) - x) : x);
+    real t = tMax * stepShare(x, spacing);
     real dt = t - tPrevious;
     scatteringStep(a, h, mu, muS, nu, phaseR, phaseM, tPrevious + real(0.5f) * dt, dt, single, total, transmittance);
     tPrevious = t;
@@ -432,9 +445,7 @@ void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real h
   real h0 = altitudeAlong(R, h, mu, stretch.x);
   real mu0 = clamp((r * mu + stretch.x) / (R + h0), real(-1.0f), real(1.0f));
   real muS0 = clamp((r * muS + stretch.x * nu) / (R + h0), real(-1.0f), real(1.0f));
-  // From inside the air, toward the viewpoint; a ray that meets the ground, toward the ground.
-  real tExit = stretchInsideSphere(R, h, mu, real(a.radii.y)).y;
-  uint spacing = h >= real(a.radii.y) ? kStepsEqual : stretch.y < tExit ? kStepsTowardEnd : kStepsTowardStart;
+  uint spacing = skyStepSpacing(a, h, stretch.y < stretchInsideSphere(R, h, mu, real(a.radii.y)).y);
   scatteringAlong(a, h0, mu0, muS0, nu, stretch.y - stretch.x, steps, spacing, single, total, transmittance);
 }
 

@@ -66,7 +66,7 @@ GPU_CONST uint kSkyTileLists = 6u;
 // zenith angle, rows gathered toward the horizon (common/atmosphere.glsl, skyViewV).
 GPU_CONST uint kSkyViewWidth = 96u;
 GPU_CONST uint kSkyViewHeight = 108u;
-GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (quadratic from inside the air)
+GPU_CONST uint kSkyViewSteps = 24u;  // steps along each texel's ray (spaced as skyStepSpacing says)
 // How a march (common/atmosphere.glsl, scatteringAlong) spaces its steps along a segment: equally;
 // gathered toward its start (step i ends at (i / steps)² of it), where a view from inside the air
 // sees its densest part; or toward its end (at 1 − (1 − i / steps)²), where a ray from high up
@@ -172,7 +172,7 @@ struct SkyUniforms {
                  // atmosphere (each column's slices split its own stretch through the air evenly), else 0
                  // (slice k ends at distance y · ((k + 1) / kAerialSize)²); y: that farthest distance (m);
                  // z: the zenith angle of the ground sphere's horizon (rad; sky_compose.glsl,
-                 // skyViewAlongGround); w: unused
+                 // aerialPerspective); w: unused
   vec4 region;   // the passes' dispatches cover only where the air or the sun can show (SkyPass::prepare,
                  // skyRegion): x, y: the compose's first pixel; z, w: the cloud pass's first sample
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
