@@ -431,8 +431,8 @@ vec2 atmosphereStretch(IN(AtmosphereParams) a, real h, real mu, real hGround) {
 
 // The sky along a whole view ray from altitude h (inside or above the atmosphere) to where it
 // leaves the air or meets the ground sphere at hGround (black: the ground itself is drawn by the
-// terrain), in `steps` steps: quadratic from inside, equal from outside (where the densest air is
-// anywhere along the ray).
+// terrain), in `steps` steps spaced as skyStepSpacing says (from outside, where the densest air is
+// anywhere along the ray, equally).
 void skyAlong(IN(AtmosphereParams) a, real h, real mu, real muS, real nu, real hGround, uint steps, OUT(vec3) single,
               OUT(vec3) total, OUT(vec3) transmittance) {
   single = vec3(real(0.0f), real(0.0f), real(0.0f));
