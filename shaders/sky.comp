@@ -32,12 +32,17 @@ layout(constant_id = 3) const bool kSpecAirglow = true;
 
 #ifndef SKY_REFERENCE
 // The class of the tiles this pipeline composes (kSkyTileMixed, kSkyTileSky, kSkyTileAerial,
-// kSkyTileAerialClear), as a specialization constant: each class's tiles are dispatched by a
-// pipeline of their own (SkyPass::recordCompose, from the lists of sky_classify.comp and
-// sky_cloud_classify.comp), so that a tile of sky runs no aerial-perspective code, a tile of
-// ground no sky-view code, and a tile of ground clear of the clouds no read of their light:
-// lavapipe runs both sides of a branch for every pixel.
+// kSkyTileAerialClear and the last two's near kinds), as a specialization constant: each class's
+// tiles are dispatched by a pipeline of their own (SkyPass::recordCompose, from the lists of
+// sky_classify.comp and sky_cloud_classify.comp), so that a tile of sky runs no
+// aerial-perspective code, a tile of ground no sky-view code, a tile of ground clear of the
+// clouds no read of their light, and a near one neither the sky-view table's light nor the
+// volume's transmittance: lavapipe runs both sides of a branch for every pixel.
 layout(constant_id = 2) const uint kSpecTileClass = kSkyTileMixed;
+// Tiles of ground clear of the clouds; tiles of ground whose rays all end well short of the
+// ground sphere (shared/sky_params.h, kSkyTileNear).
+const bool kTileClear = kSpecTileClass == kSkyTileAerialClear || kSpecTileClass == kSkyTileAerialClearNear;
+const bool kTileNear = kSpecTileClass == kSkyTileAerialNear || kSpecTileClass == kSkyTileAerialClearNear;
 
 layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform readonly image2D cloudSampleLight;
 layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform readonly image2D cloudSampleEnd;
@@ -202,14 +207,14 @@ void main() {
   cloudTransmittance = 1.0f;
   cloudShadowFactor = 1.0f;
   if (kSpecClouds)
-    upsampledClouds(pixel, ray, kSpecTileClass == kSkyTileAerialClear, cloudComposite, cloudTransmittance,
+    upsampledClouds(pixel, ray, kTileClear, cloudComposite, cloudTransmittance,
                     cloudShadowFactor);
   if (geometry) surface *= cloudShadowOnDrawn(cloudShadowFactor, stored.a);
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;
     // (A tile clear of the clouds is seen from below them, so from inside the air: its columns
     // need no stretch, sky_aerial.glsl.)
-    vec2 stretch = kSpecTileClass == kSkyTileAerialClear ? vec2(0.0f, -1.0f) : atmosphereStretch(a, h, mu, hGround);
+    vec2 stretch = kTileClear ? vec2(0.0f, -1.0f) : atmosphereStretch(a, h, mu, hGround);
     vec2 columnStretch = aerialColumnStretchOf(stretch, ray.groundHits, R, h, mu);
     // Geometry past the far side of the air (another body, a ring, seen through this one's
     // limb or from under its sky) is seen through the whole crossing, as the sky around it is:
@@ -224,7 +229,7 @@ void main() {
     bool aerial = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : geometry && !pastAir;
 #endif
     if (aerial) {
-      aerialPerspective(uv, ray, tGeometry, columnStretch, inscatter, transmittance);
+      aerialPerspective(uv, ray, tGeometry, columnStretch, kTileNear, inscatter, transmittance);
     } else {
       inscatter = skyViewAlong(dir, h, hGround).rgb;
       // Toward the sun's disc, the stars and geometry past the air: the transmittance table
@@ -242,7 +247,7 @@ void main() {
     // A tile clear of the clouds is seen from below them: its rays end on the ground before they
     // could reach the shell (the altitude along a ray is highest at one of its ends).
     vec3 airglowNear = vec3(0.0f), airglowFar = vec3(0.0f);
-    if (kSpecAirglow && kSpecTileClass != kSkyTileAerialClear)
+    if (kSpecAirglow && !kTileClear)
       airglowAlong(sky.airglow, R, h, mu, tEnd, airglowNear, airglowFar);
     inscatter += transmittance * airglowFar;
     // The layer splits the ray: the air in front of it and the cloud (the composite), and the

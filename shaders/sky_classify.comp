@@ -11,7 +11,9 @@
 //   (SkyView::ownSurfacesOnly): those lie below the top of its air, so no ray meets them past
 //   the air's far side, and every pixel takes the aerial-perspective volume. Another body, or a
 //   ring, may lie past the air and take the sky-view table: with those in the frame such tiles
-//   are mixed;
+//   are mixed. Those whose rays all end well short of the ground sphere, where the
+//   transmittance table's ratio holds, are listed apart (kSkyTileAerialNear: composeTileNear in
+//   sky_tile_classes.glsl), for a pipeline without the code that serves the others;
 // - mixed: the rest, composed by the pipeline with both sides.
 // From below the cloud layer (the classes' kSkyTileAerialClear bit), the aerial tiles are left
 // to sky_cloud_classify.comp, which lists each as aerial or as clear of the clouds from its
@@ -24,7 +26,7 @@
 
 #include "sky_compose.glsl"
 
-#include "sky_classify_push.glsl"
+#include "sky_tile_classes.glsl"
 
 void main() {
   uvec2 tile = gl_GlobalInvocationID.xy;
@@ -52,5 +54,8 @@ void main() {
   // Aerial tiles that may be clear of the cloud layer are listed by sky_cloud_classify.comp,
   // which needs their neighbours' depths.
   if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialClear)) != 0u) return;
+  if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialNear)) != 0u &&
+      composeTileNear(tile, farthest))
+    tileClass = kSkyTileAerialNear;
   appendTile(tileClass, tile);
 }

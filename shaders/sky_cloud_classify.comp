@@ -14,9 +14,7 @@
 //   0 where a pixel shows no geometry). Along a direction at cosine c to the view axis, depth d
 //   lies at distance near / (d c), so the farthest end is near / (d_min c_min);
 // - the exit distance falls as the ray turns upward, so the nearest is that of the tile's most
-//   upward ray. No direction of the tile is farther from the tile's centre than one of its
-//   corners (the screen rectangle's directions are a convex spherical polygon), so none is
-//   closer to the zenith than the centre's zenith angle less that angle.
+//   upward ray, which tileRays bounds (sky_tile_classes.glsl).
 // The tile takes no march when the farthest end lies before the nearest exit, with a margin for
 // rounding. The CPU allows the class (push.classes) only when the camera is below the layer and
 // both passes' regions start at the image's corner, so the compose tiles under a cloud tile are
@@ -25,11 +23,12 @@
 // With the same bound it lists the compose's ground tiles under each cloud tile as clear of the
 // clouds or not (kSkyTileAerialClear, kSkyTileAerial; sky_classify.comp leaves them here): a
 // clear tile's pipeline reads no cloud light and no path through the layer, only the shadow.
+// Either may also be near (composeTileNear, from the tile's own rays: kSkyTileNear).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
 
-#include "sky_classify_push.glsl"
+#include "sky_tile_classes.glsl"
 
 // A tile ends its rays before the layer only if the farthest end is within this share of the
 // nearest exit (the shader's float rounding against the bound's).
@@ -52,22 +51,9 @@ bool raysEndBeforeLayer(vec2 lo, vec2 hi, float farthest) {
   float h = sky.camera.x;
   float bottom = sky.clouds.x;
   if (h >= bottom || farthest <= 0.0f) return false;
-  vec3 centre = viewDirection(0.5f * (lo + hi));
-  float cosRadius = 1.0f, cosForward = 1.0f;
-  for (int k = 0; k < 4; ++k) {
-    vec3 corner = viewDirection(vec2((k & 1) == 0 ? lo.x : hi.x, (k & 2) == 0 ? lo.y : hi.y));
-    cosRadius = min(cosRadius, dot(corner, centre));
-    cosForward = min(cosForward, dot(corner, sky.forward.xyz));
-  }
-  // The highest direction's zenith cosine: cos(max(θ_centre − radius, 0)), a little more for rounding.
-  float muCentre = centre.z;
-  float sinCentre = sqrt(max(1.0f - muCentre * muCentre, 0.0f));
-  float sinRadius = sqrt(max(1.0f - cosRadius * cosRadius, 0.0f));
-  float muHighest = muCentre >= cosRadius ? 1.0f : muCentre * cosRadius + sinCentre * sinRadius;
-  muHighest = min(muHighest + 1e-4f, 1.0f);
-  float nearestExit = raySphere(R, h, muHighest, bottom).x;  // from inside: the way out
-  float farthestEnd = sky.camera.y / farthest / max(cosForward, 1e-6f);
-  return farthestEnd < kExitMargin * nearestExit;
+  TileRays rays = tileRays(lo, hi);
+  float nearestExit = raySphere(R, h, rays.muHighest, bottom).x;  // from inside: the way out
+  return tileFarthestEnd(rays, farthest) < kExitMargin * nearestExit;
 }
 
 void main() {
@@ -103,7 +89,12 @@ void main() {
       vec2 lo = vec2(near * kSkyWorkgroupSize);
       vec2 hi = min(vec2((far + 1u) * kSkyWorkgroupSize), sky.extent.xy);
       bool clearTile = raysEndBeforeLayer(lo, hi, farthestDepthOf(near, far));
-      appendTile(clearTile ? kSkyTileAerialClear : kSkyTileAerial, composeTile);
+      uint composeClass = clearTile ? kSkyTileAerialClear : kSkyTileAerial;
+      // (Whether the tile's own rays end short of the ground sphere: sky_tile_classes.glsl.)
+      if ((push.classes & (1u << kSkyTileAerialNear)) != 0u &&
+          composeTileNear(composeTile, farthestDepthOf(composeTile, composeTile)))
+        composeClass += kSkyTileNear;
+      appendTile(composeClass, composeTile);
     }
   }
 }

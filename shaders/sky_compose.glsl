@@ -165,20 +165,20 @@ void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, u
 // says how far it holds: near the horizon the transmittance to the top from the segment's lower
 // end is tiny, and the ratio of two such values read from the table is far off (from the ground
 // toward mountains 200 km away, 0.013 where the march gives 0.027). It is 1 where that value
-// (green) is above 10⁻², 0 below 10⁻³.
+// (green) is above kTransmittanceTrustTo (10⁻²), 0 below kTransmittanceTrustFrom (10⁻³).
 vec3 transmittanceAlong(AtmosphereParams a, float h, float mu, float t, out float trust) {
   float R = a.radii.x;
   float ht = altitudeAlong(R, h, mu, t);
   float muT = clamp(((R + h) * mu + t) / (R + ht), -1.0f, 1.0f);
-  vec3 fromLow, fromHigh;  // to the top, from the segment's lower end and from its upper end
-  if (mu < 0.0f) {
-    fromLow = textureLod(transmittanceTable, transmittanceUv(a, max(ht, 0.0f), -muT), 0.0f).rgb;
-    fromHigh = textureLod(transmittanceTable, transmittanceUv(a, h, -mu), 0.0f).rgb;
-  } else {
-    fromLow = textureLod(transmittanceTable, transmittanceUv(a, h, mu), 0.0f).rgb;
-    fromHigh = textureLod(transmittanceTable, transmittanceUv(a, ht, muT), 0.0f).rgb;
-  }
-  trust = smoothstep(1.0e-3f, 1.0e-2f, fromLow.y);
+  // To the top, from the segment's lower end and from its upper end: the camera is the upper end
+  // of a ray going down. (Chosen before the reads, not by a branch around them: lavapipe runs
+  // both sides of a branch, four reads of the table where two serve.)
+  bool down = mu < 0.0f;
+  vec2 low = down ? vec2(max(ht, 0.0f), -muT) : vec2(h, mu);
+  vec2 high = down ? vec2(h, -mu) : vec2(ht, muT);
+  vec3 fromLow = textureLod(transmittanceTable, transmittanceUv(a, low.x, low.y), 0.0f).rgb;
+  vec3 fromHigh = textureLod(transmittanceTable, transmittanceUv(a, high.x, high.y), 0.0f).rgb;
+  trust = smoothstep(kTransmittanceTrustFrom, kTransmittanceTrustTo, fromLow.y);
   return clamp(fromLow / max(fromHigh, vec3(1.0e-30f)), vec3(0.0f), vec3(1.0f));
 }
 
@@ -296,19 +296,23 @@ float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
 //   does: the whole ray also crosses the haze under its end, which from 30 km over the Great
 //   Plains at sunset is orange, and the land took its colour (46.7 dB against the volume's 49.0;
 //   with the height limit 51.9). There the volume serves.
-void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, out vec3 light, out vec3 transmittance) {
+// `near` (a tile of kSkyTileAerialNear or kSkyTileAerialClearNear: groundTileNear proved that
+// every pixel's ray ends short of that share and where the table's transmittance is trusted)
+// leaves out both, which do not change such a pixel: lavapipe runs the code of every branch.
+void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, bool near, out vec3 light,
+                       out vec3 transmittance) {
   float mu = ray.dir.z;
   // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
   float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
   vec3 bySlice = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
   float trust = 0.0f;
   if (!aerialFromAbove()) transmittance = transmittanceAlong(sky.atmosphere, sky.camera.x, mu, t, trust);
-  if (trust < 1.0f) {
+  if (!near && trust < 1.0f) {
     vec3 byVolume = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
     transmittance = trust > 0.0f ? mix(byVolume, transmittance, trust) : byVolume;
   }
   float share = 0.0f, theta = 0.0f;
-  if (!aerialFromAbove() && ray.seesGround) {
+  if (!near && !aerialFromAbove() && ray.seesGround) {
     theta = atan(length(ray.dir.xy), mu);
     float above = altitudeAlong(sky.atmosphere.radii.x, sky.camera.x, mu, t) - ray.hGround;
     // The horizon's distance in rows of the volume's columns.

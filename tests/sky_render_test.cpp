@@ -655,11 +655,13 @@ TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
 // pipelines without the other side's code (SkySettings::tileClasses, sky_classify.comp), and the
 // cloud pass its tiles whose rays all end before the cloud layer by one without the march
 // (sky_cloud_classify.comp), which also gives the ground's compose tiles clear of the layer one
-// that reads only its shadow: the pictures are those of the pipelines with everything, bit for
-// bit; from a plane most compose tiles are of one kind, and below the layer most of the ground's
-// cloud and compose tiles are clear of it. From 50 m and 1.5 km (below Earth's clouds at 2 km), from 10 km
-// looking down, Earth's limb from 6,300 km, and the airless Moon looking at the sun (its compose
-// runs only around the disc).
+// that reads only its shadow, and the ground's tiles whose rays end well short of the ground
+// sphere one without the sky-view table's light and the volume's transmittance (kSkyTileNear):
+// the pictures are those of the pipelines with everything, bit for bit; from a plane most compose
+// tiles are of one kind, below the layer most of the ground's cloud and compose tiles are clear
+// of it, and from low down most of the ground's tiles are near. From 50 m and 1.5 km (below
+// Earth's clouds at 2 km), from 10 km looking down, Earth's limb from 6,300 km, and the airless
+// Moon looking at the sun (its compose runs only around the disc).
 TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
   struct View {
     const char* preset;
@@ -667,13 +669,16 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
     double leastOfOneKind;  // share of the compose tiles that are all sky or all ground
     double leastClear;      // share of the cloud tiles that take no march
     double leastGroundClear;  // share of the ground's compose tiles clear of the clouds
+    double leastNear;         // share of the ground's compose tiles near (kSkyTileNear)
   };
   const View views[] = {
       // Measured: 61 and 36 of 84 cloud tiles take no march; 225 of 254 and 120 of 144 ground tiles
-      // are clear of the clouds.
-      {"earth", {33.81, -89.95, 50, 60, -8}, 0.7, 0.5, 0.8},    {"earth", {36.5, -118.3, 1500, 90, 2}, 0.7, 0.3, 0.7},
-      {"earth", {36.5, -118.3, 10000, 90, -60}, 0.9, 0.0, 0.0}, {"earth", {20, -30, 6.3e6, 135, -45}, 0.5, 0.0, 0.0},
-      {"moon", {10, 20, 3000, 135, 30}, 0.5, 0.0, 0.0},
+      // are clear of the clouds, 192 and 118 near.
+      {"earth", {33.81, -89.95, 50, 60, -8}, 0.7, 0.5, 0.8, 0.6},
+      {"earth", {36.5, -118.3, 1500, 90, 2}, 0.7, 0.3, 0.7, 0.7},
+      {"earth", {36.5, -118.3, 10000, 90, -60}, 0.9, 0.0, 0.0, 0.0},
+      {"earth", {20, -30, 6.3e6, 135, -45}, 0.5, 0.0, 0.0, 0.0},
+      {"moon", {10, 20, 3000, 135, 30}, 0.5, 0.0, 0.0, 0.0},
   };
   const SunPose sun{135, 35};
   RenderSettings settings = skySettings();
@@ -695,7 +700,9 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
     EXPECT_EQ(a.pixels, b.pixels);
     const auto counts = classes.sky().readTileCounts();
     const auto mixedCounts = mixed.sky().readTileCounts();
-    const uint32_t ground = counts[gpu::kSkyTileAerial] + counts[gpu::kSkyTileAerialClear];
+    const uint32_t groundClear = counts[gpu::kSkyTileAerialClear] + counts[gpu::kSkyTileAerialClearNear];
+    const uint32_t near = counts[gpu::kSkyTileAerialNear] + counts[gpu::kSkyTileAerialClearNear];
+    const uint32_t ground = counts[gpu::kSkyTileAerial] + counts[gpu::kSkyTileAerialNear] + groundClear;
     const uint32_t tiles = counts[gpu::kSkyTileMixed] + counts[gpu::kSkyTileSky] + ground;
     // Every tile of each pass's region is run once, in either setting.
     EXPECT_EQ(tiles, tilesOf(classes.sky().composeRegion()));
@@ -707,20 +714,22 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
     EXPECT_EQ(mixedCounts[gpu::kSkyCloudTileClear], 0u);
     const double oneKind = double(counts[gpu::kSkyTileSky] + ground) / std::max(tiles, 1u);
     const double clear = double(counts[gpu::kSkyCloudTileClear]) / std::max(cloudTiles, 1u);
-    const double groundClear = double(counts[gpu::kSkyTileAerialClear]) / std::max(ground, 1u);
     std::printf(
-        "sky tiles, %s from %.0f m: %u tiles, %u sky, %u ground (%u clear of the clouds), %u mixed; %u cloud "
-        "tiles, %u without the march\n",
-        view.preset, view.camera.altitudeM, tiles, counts[gpu::kSkyTileSky], ground, counts[gpu::kSkyTileAerialClear],
+        "sky tiles, %s from %.0f m: %u tiles, %u sky, %u ground (%u clear of the clouds, %u near), %u mixed; %u "
+        "cloud tiles, %u without the march\n",
+        view.preset, view.camera.altitudeM, tiles, counts[gpu::kSkyTileSky], ground, groundClear, near,
         counts[gpu::kSkyTileMixed], cloudTiles, counts[gpu::kSkyCloudTileClear]);
     EXPECT_GE(oneKind, view.leastOfOneKind);
     EXPECT_GE(clear, view.leastClear);
-    EXPECT_GE(groundClear, view.leastGroundClear);
+    EXPECT_GE(double(groundClear) / std::max(ground, 1u), view.leastGroundClear);
+    EXPECT_GE(double(near) / std::max(ground, 1u), view.leastNear);
     // Above the layer's base every ray may meet it.
     if (view.camera.altitudeM >= planet.clouds.bottomM) {
       EXPECT_EQ(counts[gpu::kSkyCloudTileClear], 0u);
-      EXPECT_EQ(counts[gpu::kSkyTileAerialClear], 0u);
+      EXPECT_EQ(groundClear, 0u);
     }
+    // From above the air the ground takes the volume's transmittance.
+    if (view.camera.altitudeM >= planet.atmosphere.heightM) EXPECT_EQ(near, 0u);
     if (a.pixels != b.pixels) {
       const std::string name = testOutputDir().string() + "/sky_tiles_" + std::to_string(&view - views);
       writePng(name + ".classes.png", a);

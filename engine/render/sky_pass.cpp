@@ -67,7 +67,7 @@ constexpr VkFormat kAerialFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkImageUsageFlags kTableUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
-// The tile classifiers' push constant (shaders/sky_classify_push.glsl).
+// The tile classifiers' push constant (shaders/sky_tile_classes.glsl).
 struct ClassifyPush {
   uint32_t tilesX, tilesY;            // the compose region's tiles
   uint32_t cloudTilesX, cloudTilesY;  // the cloud region's
@@ -408,6 +408,9 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // The ground's compose tiles clear of the clouds: sorted with the cloud tiles, which start at
   // the same corner; their pipeline reads the aerial volume as from inside the air.
   clearGroundTiles_ = clearCloudTiles_ && ownSurfacesOnly_ && !above;
+  // The ground's tiles whose rays all end well short of the ground sphere (kSkyTileNear): from
+  // inside the air only, where the compose's aerial perspective reads the tables it leaves out.
+  nearGroundTiles_ = ownSurfacesOnly_ && !above;
   // The zenith angle of the ground sphere's horizon, as skyViewZenithRange finds it (from inside the
   // air its range starts at the zenith): the ground's half of the sky-view table's rows.
   const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);
@@ -505,6 +508,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (ownSurfacesOnly_ ? 1u << gpu::kSkyTileAerial : 0u);
     if (clearCloudTiles_) classes |= 1u << gpu::kSkyCloudTileClear;
     if (clearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialClear;
+    if (settings_.tileClasses && nearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialNear;
     const uint32_t cloudGroupsX = (cloudRegion_.width() + group - 1) / group,
                    cloudGroupsY = (cloudRegion_.height() + group - 1) / group;
     const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes};

@@ -186,8 +186,9 @@ class SkyPass {
   // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
   // For tests: how many of the last frame's compose tiles were of each class (mixed, sky,
-  // aerial, aerial clear of the clouds: shaders/shared/sky_params.h, kSkyTileMixed...), and of its cloud tiles
-  // (marched, clear: kSkyCloudTileMarch...), after a frame recorded in tables mode has completed.
+  // aerial, aerial clear of the clouds, and those two near: shaders/shared/sky_params.h,
+  // kSkyTileMixed...), and of its cloud tiles (marched, clear: kSkyCloudTileMarch...), after a
+  // frame recorded in tables mode has completed.
   std::array<uint32_t, gpu::kSkyTileLists> readTileCounts();
   // The last prepared frame's cloud samples (SkySettings::cloudScale pixels per sample each way).
   const PixelRect& cloudRegion() const { return cloudRegion_; }
@@ -275,6 +276,9 @@ class SkyPass {
   // Of the last prepare(): the compose may read only the clouds' shadow in the ground's tiles
   // whose rays all end before the layer (as above, with the ground's class and inside the air).
   bool clearGroundTiles_ = false;
+  // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, with the
+  // ground's class).
+  bool nearGroundTiles_ = false;
 };
 
 }  // namespace planet

@@ -51,13 +51,21 @@ GPU_CONST uint kSkyTileAerial = 2u;  // every pixel shows geometry inside the ai
 // their rays before the layer: no cloud in front of them, only its shadow on them (sorted by
 // sky_cloud_classify.comp).
 GPU_CONST uint kSkyTileAerialClear = 3u;
-GPU_CONST uint kSkyTileClasses = 4u;
+// The two classes above, for tiles whose every ray, seen from inside the air, ends well short of
+// the ground sphere (so no pixel takes the sky-view table's light: sky_compose.glsl,
+// aerialPerspective) and ends where the transmittance table's ratio holds (transmittanceAlong's
+// trust is 1, so no pixel reads the volume's transmittance). Sorted by sky_classify.comp and
+// sky_cloud_classify.comp (groundTileNear); kSkyTileNear added to the class of the tile's kind.
+GPU_CONST uint kSkyTileNear = 2u;
+GPU_CONST uint kSkyTileAerialNear = 4u;
+GPU_CONST uint kSkyTileAerialClearNear = 5u;
+GPU_CONST uint kSkyTileClasses = 6u;
 // The cloud pass's tiles (8 × 8 samples): those whose rays may meet the layer, and those whose
 // every ray ends before it can (from below the layer's base, at geometry nearer than where the
 // ray leaves the ball under the base), which take no march.
-GPU_CONST uint kSkyCloudTileMarch = 4u;
-GPU_CONST uint kSkyCloudTileClear = 5u;
-GPU_CONST uint kSkyTileLists = 6u;
+GPU_CONST uint kSkyCloudTileMarch = 6u;
+GPU_CONST uint kSkyCloudTileClear = 7u;
+GPU_CONST uint kSkyTileLists = 8u;
 
 // The per-frame tables of the sky (Hillaire 2020, §5.3 and §5.4), built by sky_view.comp and
 // aerial_perspective.comp before the compose pass, from the same SkyUniforms.
@@ -94,6 +102,12 @@ GPU_CONST float kSkyViewGroundShareFrom = 0.9f;
 GPU_CONST float kSkyViewGroundShareTo = 0.98f;
 GPU_CONST float kSkyViewGroundHeightFrom = 100.0f;
 GPU_CONST float kSkyViewGroundHeightTo = 400.0f;
+// From inside the air, the transmittance between the camera and a ray's end is the ratio of two
+// reads of the transmittance table (sky_compose.glsl, transmittanceAlong). It holds where the
+// transmittance to the top from the segment's lower end (green) is above the second value, and
+// not below the first; between them it is blended into the aerial volume's.
+GPU_CONST float kTransmittanceTrustFrom = 1.0e-3f;
+GPU_CONST float kTransmittanceTrustTo = 1.0e-2f;
 // Bindings of the per-frame table builds (set 0).
 GPU_CONST uint kSkyTableBindingUniforms = 0u;             // SkyUniforms (uniform buffer: sky_uniforms.glsl)
 GPU_CONST uint kSkyTableBindingTransmittance = 1u;        // sampler2D

@@ -1,0 +1,91 @@
+// What the two tile classifiers (sky_classify.comp, sky_cloud_classify.comp) share: their push
+// constant (SkyPass::recordCompose's ClassifyPush) and the bounds they sort tiles by. The
+// includer includes sky_compose.glsl first.
+#ifndef PLANET_SKY_TILE_CLASSES_GLSL
+#define PLANET_SKY_TILE_CLASSES_GLSL
+
+layout(push_constant) uniform ClassifyPush {
+  uvec2 tiles;       // the compose region's tiles in x and y
+  uvec2 cloudTiles;  // the cloud region's tiles (8 × 8 samples) in x and y
+  uint classes;      // bit c set: tiles may be of class c, else they are mixed (or marched)
+}
+push;
+
+// Bounds on the view rays through a rectangle [lo, hi] of the screen (pixels): the zenith
+// cosines of the highest and the lowest direction, and the least cosine to the view axis. No
+// direction of the rectangle is farther from its centre than one of its corners (the
+// rectangle's directions are a convex spherical polygon), so none is nearer the zenith than the
+// centre's zenith angle less that angle, nor farther from it than the centre's plus that angle
+// (a little wider, for rounding); the angle to the view axis is greatest at a corner.
+struct TileRays {
+  float muHighest;
+  float muLowest;
+  float cosForward;
+};
+
+TileRays tileRays(vec2 lo, vec2 hi) {
+  vec3 centre = viewDirection(0.5f * (lo + hi));
+  float cosRadius = 1.0f;
+  TileRays rays;
+  rays.cosForward = 1.0f;
+  for (int k = 0; k < 4; ++k) {
+    vec3 corner = viewDirection(vec2((k & 1) == 0 ? lo.x : hi.x, (k & 2) == 0 ? lo.y : hi.y));
+    cosRadius = min(cosRadius, dot(corner, centre));
+    rays.cosForward = min(rays.cosForward, dot(corner, sky.forward.xyz));
+  }
+  // cos(max(θ − ρ, 0)) and cos(min(θ + ρ, π)) for the centre's zenith angle θ and the radius ρ.
+  float muCentre = centre.z;
+  float sinCentre = sqrt(max(1.0f - muCentre * muCentre, 0.0f));
+  float sinRadius = sqrt(max(1.0f - cosRadius * cosRadius, 0.0f));
+  float highest = muCentre >= cosRadius ? 1.0f : muCentre * cosRadius + sinCentre * sinRadius;
+  float lowest = -muCentre >= cosRadius ? -1.0f : muCentre * cosRadius - sinCentre * sinRadius;
+  rays.muHighest = min(highest + 1e-4f, 1.0f);
+  rays.muLowest = max(lowest - 1e-4f, -1.0f);
+  return rays;
+}
+
+// The farthest any of the rays runs to a drawn surface at a depth (reversed Z) of at least
+// `farthest`: a ray at cosine c to the view axis meets depth d at near / (d c).
+float tileFarthestEnd(TileRays rays, float farthest) {
+  return sky.camera.y / farthest / max(rays.cosForward, 1e-6f);
+}
+
+// How close to a bound the tiles' own rounding may bring a pixel's value: the distance to the
+// ground sphere (a share of it) and the transmittance the table's ratio is trusted from.
+const float kNearMargin = 0.99f;
+const float kTrustMargin = 1.1f;
+
+// Whether every pixel of compose tile `tile`, all of whose pixels show geometry no farther than
+// depth `farthest` (reversed Z), takes its light from the aerial volume and its transmittance
+// from the table's ratio alone (kSkyTileNear; sky_compose.glsl, aerialPerspective, leaves the
+// rest out for such tiles). From inside the air that holds when
+// - every ray ends short of kSkyViewGroundShareFrom of its distance to the ground sphere (where
+//   the sky-view table's light starts): that distance grows as a ray turns up, so the least is
+//   the lowest direction's; and
+// - every ray goes down and ends before its lowest point, with the transmittance to the top from
+//   its end, back along it, at least kTransmittanceTrustTo (transmittanceAlong's trust is 1).
+//   Back along a ray of zenith cosine mu from its end at distance t and altitude h_t, the zenith
+//   cosine is c = −((R + h) mu + t) / (R + h_t), at least −((R + h) mu + t) / (R + h) while that is
+//   positive (the end lies below the camera); the transmittance grows with c and with altitude,
+//   so it is at least the table's at altitude 0 and the least c of the tile.
+bool composeTileNear(uvec2 tile, float farthest) {
+  AtmosphereParams a = sky.atmosphere;
+  float R = a.radii.x;
+  float h = sky.camera.x;
+  float hGround = sky.surface.z;  // as viewRay's
+  if (aerialFromAbove() || !(farthest > 0.0f) || !(h > hGround)) return false;
+  // The tile's pixel centres (viewRay's screen points).
+  vec2 corner = sky.region.xy + vec2(tile * kSkyWorkgroupSize);
+  vec2 end = min(corner + float(kSkyWorkgroupSize), sky.extent.xy);
+  TileRays rays = tileRays(corner + 0.5f, end - 0.5f);
+  if (!(rays.muHighest < 0.0f)) return false;
+  float farthestEnd = tileFarthestEnd(rays, farthest);
+  vec2 ground = raySphere(R, h, rays.muLowest, hGround);
+  if (ground.x >= 0.0f && !(farthestEnd < kNearMargin * kSkyViewGroundShareFrom * ground.x)) return false;
+  float cosBack = -((R + h) * rays.muHighest + farthestEnd) / (R + h);
+  if (!(cosBack > 0.0f)) return false;
+  float fromEnd = textureLod(transmittanceTable, transmittanceUv(a, 0.0f, cosBack), 0.0f).g;
+  return fromEnd >= kTrustMargin * kTransmittanceTrustTo;
+}
+
+#endif
