@@ -660,8 +660,8 @@ TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
 // the pictures are those of the pipelines with everything, bit for bit; from a plane most compose
 // tiles are of one kind, below the layer most of the ground's cloud and compose tiles are clear
 // of it, and from low down most of the ground's tiles are near. From 50 m and 1.5 km (below
-// Earth's clouds at 2 km), from 10 km looking down, Earth's limb from 6,300 km, and the airless
-// Moon looking at the sun (its compose runs only around the disc).
+// Earth's clouds at 2 km), from 10 km looking down, 30 m over the sea, Earth's limb from 6,300 km,
+// and the airless Moon looking at the sun (its compose runs only around the disc).
 TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
   struct View {
     const char* preset;
@@ -673,10 +673,12 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
   };
   const View views[] = {
       // Measured: 61 and 36 of 84 cloud tiles take no march; 225 of 254 and 120 of 144 ground tiles
-      // are clear of the clouds, 192 and 118 near.
+      // are clear of the clouds, 192 and 118 near; over the sea 48 of 84 and 168 of 192 clear.
       {"earth", {33.81, -89.95, 50, 60, -8}, 0.7, 0.5, 0.8, 0.6},
       {"earth", {36.5, -118.3, 1500, 90, 2}, 0.7, 0.3, 0.7, 0.7},
       {"earth", {36.5, -118.3, 10000, 90, -60}, 0.9, 0.0, 0.0, 0.0},
+      // Over the sea every ray that meets it ends on the ground sphere: no tile is near.
+      {"earth", {35, -20, 30, 90, -5}, 0.8, 0.4, 0.7, 0.0},
       {"earth", {20, -30, 6.3e6, 135, -45}, 0.5, 0.0, 0.0, 0.0},
       {"moon", {10, 20, 3000, 135, 30}, 0.5, 0.0, 0.0, 0.0},
   };
