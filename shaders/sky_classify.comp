@@ -9,9 +9,11 @@
 // - sky: no pixel of the tile shows geometry (depth 0), so every one takes the sky-view table;
 // - aerial: every pixel shows geometry and the frame's depth holds only this body's surfaces
 //   (SkyView::ownSurfacesOnly): those lie below the top of its air, so no ray meets them past
-//   the air's far side, and every pixel takes the aerial-perspective volume. Another body, or a
-//   ring, may lie past the air and take the sky-view table: with those in the frame such tiles
-//   are mixed. Those whose rays all end well short of the ground sphere, where the
+//   the air's far side, and every pixel takes the aerial-perspective volume. Another body, a
+//   ring, or terrain whose bound reaches above the top may lie past the air and take the
+//   sky-view table: with those in the frame such a tile is aerial only when, from inside the
+//   air, its rays are shown to end before they leave it (push.checkAirExit:
+//   composeTileInsideAir in sky_tile_classes.glsl), else mixed. Those whose rays all end well short of the ground sphere, where the
 //   transmittance table's ratio holds, are listed apart (kSkyTileAerialNear: composeTileNear in
 //   sky_tile_classes.glsl), for a pipeline without the code that serves the others;
 // - mixed: the rest, composed by the pipeline with both sides.
@@ -51,6 +53,8 @@ void main() {
   skyTiles.tiles[farthestDepthSlot(tile, push.tiles.x)] = floatBitsToUint(anySky ? 0.0f : farthest);
   uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
   if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
+  if (tileClass == kSkyTileAerial && push.checkAirExit != 0u && !composeTileInsideAir(tile, farthest))
+    tileClass = kSkyTileMixed;
   // Aerial tiles that may be clear of the cloud layer are listed by sky_cloud_classify.comp,
   // which needs their neighbours' depths.
   if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialClear)) != 0u) return;

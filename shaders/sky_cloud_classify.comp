@@ -16,9 +16,9 @@
 // - the exit distance falls as the ray turns upward, so the nearest is that of the tile's most
 //   upward ray, which tileRays bounds (sky_tile_classes.glsl).
 // The tile takes no march when the farthest end lies before the nearest exit, with a margin for
-// rounding. The CPU allows the class (push.classes) only when the camera is below the layer and
-// both passes' regions start at the image's corner, so the compose tiles under a cloud tile are
-// those of its pixels' rectangle.
+// rounding (kDistanceMargin). The CPU allows the class (push.classes) only when the camera is
+// below the layer and both passes' regions start at the image's corner, so the compose tiles
+// under a cloud tile are those of its pixels' rectangle.
 //
 // With the same bound it lists the compose's ground tiles under each cloud tile as clear of the
 // clouds or not (kSkyTileAerialClear, kSkyTileAerial; sky_classify.comp leaves them here): a
@@ -30,9 +30,6 @@
 
 #include "sky_tile_classes.glsl"
 
-// A tile ends its rays before the layer only if the farthest end is within this share of the
-// nearest exit (the shader's float rounding against the bound's).
-const float kExitMargin = 0.99f;
 
 // The least depth (reversed Z: the farthest surface) of compose tiles `from` to `to` (inclusive),
 // 0 where a pixel of them shows no geometry (sky_classify.comp).
@@ -53,7 +50,7 @@ bool raysEndBeforeLayer(vec2 lo, vec2 hi, float farthest) {
   if (h >= bottom || farthest <= 0.0f) return false;
   TileRays rays = tileRays(lo, hi);
   float nearestExit = raySphere(R, h, rays.muHighest, bottom).x;  // from inside: the way out
-  return tileFarthestEnd(rays, farthest) < kExitMargin * nearestExit;
+  return tileFarthestEnd(rays, farthest) < kDistanceMargin * nearestExit;
 }
 
 void main() {
@@ -84,7 +81,10 @@ void main() {
   for (uint y = from.y; y <= to.y; ++y) {
     for (uint x = from.x; x <= to.x; ++x) {
       uvec2 composeTile = uvec2(x, y);
-      if (!(uintBitsToFloat(skyTiles.tiles[farthestDepthSlot(composeTile, push.tiles.x)]) > 0.0f)) continue;
+      float farthest = farthestDepthOf(composeTile, composeTile);
+      if (!(farthest > 0.0f)) continue;
+      // (A tile whose rays may leave the air is mixed: sky_classify.comp lists it.)
+      if (push.checkAirExit != 0u && !composeTileInsideAir(composeTile, farthest)) continue;
       uvec2 near = max(composeTile, 1u) - 1u, far = min(composeTile + 1u, push.tiles - 1u);
       vec2 lo = vec2(near * kSkyWorkgroupSize);
       vec2 hi = min(vec2((far + 1u) * kSkyWorkgroupSize), sky.extent.xy);
@@ -92,7 +92,7 @@ void main() {
       uint composeClass = clearTile ? kSkyTileAerialClear : kSkyTileAerial;
       // (Whether the tile's own rays end short of the ground sphere: sky_tile_classes.glsl.)
       if ((push.classes & (1u << kSkyTileAerialNear)) != 0u &&
-          composeTileNear(composeTile, farthestDepthOf(composeTile, composeTile)))
+          composeTileNear(composeTile, farthest))
         composeClass += kSkyTileNear;
       appendTile(composeClass, composeTile);
     }

@@ -8,6 +8,11 @@ layout(push_constant) uniform ClassifyPush {
   uvec2 tiles;       // the compose region's tiles in x and y
   uvec2 cloudTiles;  // the cloud region's tiles (8 × 8 samples) in x and y
   uint classes;      // bit c set: tiles may be of class c, else they are mixed (or marched)
+  // 1: the frame's depth may hold surfaces past the far side of the air (another body, a ring,
+  // terrain above the top: SkyView::ownSurfacesOnly is false), and the camera is inside the air;
+  // a tile of ground is of the ground's classes only where composeTileInsideAir shows that none
+  // of its pixels is.
+  uint checkAirExit;
 }
 push;
 
@@ -50,9 +55,17 @@ float tileFarthestEnd(TileRays rays, float farthest) {
   return sky.camera.y / farthest / max(rays.cosForward, 1e-6f);
 }
 
-// How close to a bound the tiles' own rounding may bring a pixel's value: the distance to the
-// ground sphere (a share of it) and the transmittance the table's ratio is trusted from.
-const float kNearMargin = 0.99f;
+// The view rays through the pixel centres (viewRay's screen points) of compose tile `tile`.
+TileRays composeTileRays(uvec2 tile) {
+  vec2 corner = sky.region.xy + vec2(tile * kSkyWorkgroupSize);
+  vec2 end = min(corner + float(kSkyWorkgroupSize), sky.extent.xy);
+  return tileRays(corner + 0.5f, end - 0.5f);
+}
+
+// How close to a bound the tiles' own rounding may bring a pixel's value: the distances to the
+// ground sphere (a share of it) and out of the air, and the transmittance the table's ratio is
+// trusted from.
+const float kDistanceMargin = 0.99f;
 const float kTrustMargin = 1.1f;
 
 // Whether every pixel of compose tile `tile`, all of whose pixels show geometry no farther than
@@ -74,18 +87,27 @@ bool composeTileNear(uvec2 tile, float farthest) {
   float h = sky.camera.x;
   float hGround = sky.surface.z;  // as viewRay's
   if (aerialFromAbove() || !(farthest > 0.0f) || !(h > hGround)) return false;
-  // The tile's pixel centres (viewRay's screen points).
-  vec2 corner = sky.region.xy + vec2(tile * kSkyWorkgroupSize);
-  vec2 end = min(corner + float(kSkyWorkgroupSize), sky.extent.xy);
-  TileRays rays = tileRays(corner + 0.5f, end - 0.5f);
+  TileRays rays = composeTileRays(tile);
   if (!(rays.muHighest < 0.0f)) return false;
   float farthestEnd = tileFarthestEnd(rays, farthest);
   vec2 ground = raySphere(R, h, rays.muLowest, hGround);
-  if (ground.x >= 0.0f && !(farthestEnd < kNearMargin * kSkyViewGroundShareFrom * ground.x)) return false;
+  if (ground.x >= 0.0f && !(farthestEnd < kDistanceMargin * kSkyViewGroundShareFrom * ground.x)) return false;
   float cosBack = -((R + h) * rays.muHighest + farthestEnd) / (R + h);
   if (!(cosBack > 0.0f)) return false;
   float fromEnd = textureLod(transmittanceTable, transmittanceUv(a, 0.0f, cosBack), 0.0f).g;
   return fromEnd >= kTrustMargin * kTransmittanceTrustTo;
+}
+
+// Whether every ray of compose tile `tile`, all of whose pixels show geometry no farther than
+// depth `farthest` (reversed Z), ends before it leaves the air, seen from inside it: then none
+// shows a surface past the air's far side, which the compose sees through the whole crossing
+// from the sky-view table (sky.comp, pastAir), and the ground's classes compose the tile as the
+// mixed pipeline does. From inside, the way out of the top comes soonest on the highest ray.
+bool composeTileInsideAir(uvec2 tile, float farthest) {
+  if (aerialFromAbove() || !(farthest > 0.0f)) return false;
+  TileRays rays = composeTileRays(tile);
+  float exit = raySphere(sky.atmosphere.radii.x, sky.camera.x, rays.muHighest, sky.atmosphere.radii.y).x;
+  return tileFarthestEnd(rays, farthest) < kDistanceMargin * exit;
 }
 
 #endif

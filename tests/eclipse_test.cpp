@@ -413,22 +413,18 @@ TEST_F(EclipseGpu, GroundInTheMoonsUmbraIsDarkAndOutsideItLit) {
 }
 
 // In a scene the frame's depth holds other bodies, which may lie past the air's far side and take
-// the sky-view table (SkyView::ownSurfacesOnly): the compose's tiles of ground are then composed
-// by the pipeline with both sides, and only the tiles of sky by one without the aerial volume's
-// code (sky_classify.comp). The picture is that of every tile composed with both, bit for bit:
-// from 2 km on Terra looking along the horizon toward the Moon's side of the sky, and from
-// 20,000 km with the Moon beside Terra.
-TEST_F(EclipseGpu, ASceneComposesNoTileOfGroundWithoutTheSkyViewTable) {
+// the sky-view table (SkyView::ownSurfacesOnly is false). A tile where every pixel shows geometry
+// is then composed by the ground's pipelines, which have no sky-view code, only where, from inside
+// the air, the classify passes show that none of its rays leaves the air (composeTileInsideAir);
+// from above the air, never. The picture is that of every tile composed with both sides, bit for
+// bit: from 2 km on Terra looking along the horizon (its ground's tiles are the ground's), from
+// there looking at the Moon in a 2-degree view (the Moon's disc, 384,000 km past the air, fills
+// whole tiles: they are mixed), and from 20,000 km with the Moon beside Terra.
+TEST_F(EclipseGpu, ASceneComposesTheGroundWithoutTheSkyViewTableOnlyWhereItsRaysEndInsideTheAir) {
   const SceneDescription scene = resolveScene("system");
-  const size_t terra = sceneBodyIndex(scene, "Terra");
-  RenderSettings settings;
-  settings.width = 160;
-  settings.height = 90;
-  RenderSettings mixedSettings = settings;
-  mixedSettings.sky.tileClasses = false;
-  Renderer classes(context(), scene, settings);
-  Renderer mixed(context(), scene, mixedSettings);
+  const size_t terra = sceneBodyIndex(scene, "Terra"), moon = sceneBodyIndex(scene, "Moon");
   const std::vector<BodyState> states = sceneStateAt(scene, kSolarEclipseS);
+  const double radius = scene.bodies[terra].planet.radiusM;
   CameraPose low;
   low.latitudeDeg = kUmbraLatitudeDeg + 20.0;
   low.longitudeDeg = kUmbraLongitudeDeg;
@@ -437,16 +433,53 @@ TEST_F(EclipseGpu, ASceneComposesNoTileOfGroundWithoutTheSkyViewTable) {
   CameraPose high = low;
   high.altitudeM = 2.0e7;
   high.pitchDeg = -90.0;
-  for (const CameraPose& pose : {low, high}) {
-    SCOPED_TRACE("from " + std::to_string(pose.altitudeM) + " m");
-    const CameraBasis local = cameraBasis(pose, scene.bodies[terra].planet.radiusM);
-    const RenderResult a = classes.renderScene(sceneView(states, kSolarEclipseS, terra, local));
-    const RenderResult b = mixed.renderScene(sceneView(states, kSolarEclipseS, terra, local));
+  // 2 km above the point of Terra 30 degrees from the one under the Moon, looking at the Moon.
+  const glm::dvec3 toMoon =
+      glm::transpose(states[terra].bodyToScene) * (states[moon].positionM - states[terra].positionM);
+  const glm::dvec3 side = glm::normalize(glm::cross(toMoon, glm::dvec3(0.0, 0.0, 1.0)));
+  const glm::dvec3 up =
+      glm::normalize(std::cos(glm::radians(30.0)) * glm::normalize(toMoon) + std::sin(glm::radians(30.0)) * side);
+  const CameraBasis atMoon = lookingAt(up * (radius + 2000.0), toMoon);
+  struct View {
+    const char* name;
+    CameraBasis camera;
+    double fovYDeg;
+    bool terraGround;  // whether Terra's compose has tiles of the ground's classes
+    bool terraSky;     // ... and tiles of sky (above the horizon, around the Moon)
+    bool terraMixed;   // ... and mixed tiles (the Moon's disc)
+  };
+  const View views[] = {{"2 km, along the horizon", cameraBasis(low, radius), 60.0, true, true, false},
+                        {"2 km, the Moon in a 6-degree view", atMoon, 6.0, false, true, true},
+                        {"20,000 km", cameraBasis(high, radius), 60.0, false, false, false}};
+  for (const View& view : views) {
+    SCOPED_TRACE(view.name);
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.fovYDeg = view.fovYDeg;
+    RenderSettings mixedSettings = settings;
+    mixedSettings.sky.tileClasses = false;
+    Renderer classes(context(), scene, settings);
+    Renderer mixed(context(), scene, mixedSettings);
+    const RenderResult a = classes.renderScene(sceneView(states, kSolarEclipseS, terra, view.camera));
+    const RenderResult b = mixed.renderScene(sceneView(states, kSolarEclipseS, terra, view.camera));
     EXPECT_EQ(a.image.pixels, b.image.pixels);
-    for (size_t body = 0; body < scene.bodies.size(); ++body)
-      EXPECT_EQ(classes.sky(body).readTileCounts()[gpu::kSkyTileAerial], 0u) << scene.bodies[body].name;
-    if (pose.altitudeM < 1e4) {  // the sky above the horizon is tiles of sky
-      EXPECT_GT(classes.sky(terra).readTileCounts()[gpu::kSkyTileSky], 0u);
+    for (size_t body = 0; body < scene.bodies.size(); ++body) {
+      const auto counts = classes.sky(body).readTileCounts();
+      std::printf("scene tiles, %s, %s: %u sky, %u ground, %u mixed\n", view.name, scene.bodies[body].name.c_str(),
+                  counts[gpu::kSkyTileSky], SkyPass::groundTiles(counts), counts[gpu::kSkyTileMixed]);
+      if (body == terra && view.terraGround)
+        EXPECT_GT(SkyPass::groundTiles(counts), 0u);
+      else
+        EXPECT_EQ(SkyPass::groundTiles(counts), 0u) << scene.bodies[body].name;
+    }
+    const auto terraCounts = classes.sky(terra).readTileCounts();
+    if (view.terraSky) EXPECT_GT(terraCounts[gpu::kSkyTileSky], 0u);
+    if (view.terraMixed) EXPECT_GT(terraCounts[gpu::kSkyTileMixed], 0u);
+    if (a.image.pixels != b.image.pixels) {
+      const std::string name = testOutputDir().string() + "/scene_tiles_" + std::to_string(&view - views);
+      writePng(name + ".classes.png", a.image);
+      writePng(name + ".mixed.png", b.image);
     }
   }
 }

@@ -660,8 +660,9 @@ TEST_F(SkyRender, ThePassesRunOnlyWhereTheAirOrTheSunCanShow) {
 // the pictures are those of the pipelines with everything, bit for bit; from a plane most compose
 // tiles are of one kind, below the layer most of the ground's cloud and compose tiles are clear
 // of it, and from low down most of the ground's tiles are near. From 50 m and 1.5 km (below
-// Earth's clouds at 2 km), from 10 km looking down, 30 m over the sea, Earth's limb from 6,300 km,
-// and the airless Moon looking at the sun (its compose runs only around the disc).
+// Earth's clouds at 2 km), from 10 km looking down, 30 m over the sea, Mars from 100 m, Earth's
+// limb from 6,300 km, and the airless Moon looking at the sun (its compose runs only around the
+// disc).
 TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
   struct View {
     const char* preset;
@@ -673,12 +674,16 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
   };
   const View views[] = {
       // Measured: 61 and 36 of 84 cloud tiles take no march; 225 of 254 and 120 of 144 ground tiles
-      // are clear of the clouds, 192 and 118 near; over the sea 48 of 84 and 168 of 192 clear.
+      // are clear of the clouds, 192 and 118 near; over the sea 48 of 84 and 168 of 192 clear; on
+      // Mars 282 of 336 tiles ground, 168 of them near.
       {"earth", {33.81, -89.95, 50, 60, -8}, 0.7, 0.5, 0.8, 0.6},
       {"earth", {36.5, -118.3, 1500, 90, 2}, 0.7, 0.3, 0.7, 0.7},
       {"earth", {36.5, -118.3, 10000, 90, -60}, 0.9, 0.0, 0.0, 0.0},
       // Over the sea every ray that meets it ends on the ground sphere: no tile is near.
       {"earth", {35, -20, 30, 90, -5}, 0.8, 0.4, 0.7, 0.0},
+      // Mars's terrain bound reaches above its air, so its ground's tiles are the ground's only
+      // where the classify passes show that their rays end inside the air.
+      {"mars", {-4.6, 137.4, 100, 45, -5}, 0.85, 0.0, 0.0, 0.5},
       {"earth", {20, -30, 6.3e6, 135, -45}, 0.5, 0.0, 0.0, 0.0},
       {"moon", {10, 20, 3000, 135, 30}, 0.5, 0.0, 0.0, 0.0},
   };
@@ -704,7 +709,7 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
     const auto mixedCounts = mixed.sky().readTileCounts();
     const uint32_t groundClear = counts[gpu::kSkyTileAerialClear] + counts[gpu::kSkyTileAerialClearNear];
     const uint32_t near = counts[gpu::kSkyTileAerialNear] + counts[gpu::kSkyTileAerialClearNear];
-    const uint32_t ground = counts[gpu::kSkyTileAerial] + counts[gpu::kSkyTileAerialNear] + groundClear;
+    const uint32_t ground = SkyPass::groundTiles(counts);
     const uint32_t tiles = counts[gpu::kSkyTileMixed] + counts[gpu::kSkyTileSky] + ground;
     // Every tile of each pass's region is run once, in either setting.
     EXPECT_EQ(tiles, tilesOf(classes.sky().composeRegion()));

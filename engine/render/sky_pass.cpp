@@ -72,6 +72,7 @@ struct ClassifyPush {
   uint32_t tilesX, tilesY;            // the compose region's tiles
   uint32_t cloudTilesX, cloudTilesY;  // the cloud region's
   uint32_t classes;                   // bit c set: tiles may be of class c (else they are mixed, or marched)
+  uint32_t checkAirExit;              // 1: a tile is of the ground's classes only if its rays end inside the air
 };
 
 }  // namespace
@@ -407,10 +408,15 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
       std::sqrt(std::max(highest - groundSphere, 0.0) * (2.0 * radius + highest + groundSphere));
   // The ground's compose tiles clear of the clouds: sorted with the cloud tiles, which start at
   // the same corner; their pipeline reads the aerial volume as from inside the air.
-  clearGroundTiles_ = clearCloudTiles_ && ownSurfacesOnly_ && !above;
+  // The ground's tiles: when the depth may hold surfaces past the air's far side (another body,
+  // a ring, terrain whose bound reaches above the top), only from inside the air, tile by tile
+  // where the classify passes show that no ray of the tile leaves the air (sky_tile_classes.glsl,
+  // composeTileInsideAir; from above, a ray crosses the air before it meets anything).
+  groundTiles_ = ownSurfacesOnly_ || !above;
+  clearGroundTiles_ = clearCloudTiles_ && groundTiles_ && !above;
   // The ground's tiles whose rays all end well short of the ground sphere (kSkyTileNear): from
   // inside the air only, where the compose's aerial perspective reads the tables it leaves out.
-  nearGroundTiles_ = ownSurfacesOnly_ && !above;
+  nearGroundTiles_ = groundTiles_ && !above;
   // The zenith angle of the ground sphere's horizon, as skyViewZenithRange finds it (from inside the
   // air its range starts at the zenith): the ground's half of the sky-view table's rows.
   const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);
@@ -505,13 +511,13 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, classifyLayout_.get(), 0, 1, &sets_[slot_], 0,
                             nullptr);
     uint32_t classes = 0;
-    if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (ownSurfacesOnly_ ? 1u << gpu::kSkyTileAerial : 0u);
+    if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (groundTiles_ ? 1u << gpu::kSkyTileAerial : 0u);
     if (clearCloudTiles_) classes |= 1u << gpu::kSkyCloudTileClear;
     if (clearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialClear;
     if (settings_.tileClasses && nearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialNear;
     const uint32_t cloudGroupsX = (cloudRegion_.width() + group - 1) / group,
                    cloudGroupsY = (cloudRegion_.height() + group - 1) / group;
-    const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes};
+    const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes, ownSurfacesOnly_ ? 0u : 1u};
     vkCmdPushConstants(cmd, classifyLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     // One invocation per tile.
     vkCmdDispatch(cmd, (groupsX + group - 1) / group, (groupsY + group - 1) / group, 1);
@@ -556,6 +562,11 @@ std::array<uint32_t, gpu::kSkyTileLists> SkyPass::readTileCounts() {
   std::array<uint32_t, gpu::kSkyTileLists> counts{};
   for (uint32_t list = 0; list < gpu::kSkyTileLists; ++list) counts[list] = header[4 * list];
   return counts;
+}
+
+uint32_t SkyPass::groundTiles(const std::array<uint32_t, gpu::kSkyTileLists>& counts) {
+  return counts[gpu::kSkyTileAerial] + counts[gpu::kSkyTileAerialClear] + counts[gpu::kSkyTileAerialNear] +
+         counts[gpu::kSkyTileAerialClearNear];
 }
 
 std::vector<glm::vec4> SkyPass::readSkyView() {

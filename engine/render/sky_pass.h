@@ -124,7 +124,8 @@ struct SkyView {
   std::vector<Occluder> occluders;
   // Whether the depth holds only this body's surfaces, all below the top of its air (no other
   // body, no rings, no terrain above the air): then a tile where every pixel shows geometry is
-  // composed by the aerial-perspective volume alone (shaders/sky_classify.comp).
+  // composed by the aerial-perspective volume alone (shaders/sky_classify.comp). Otherwise it is,
+  // from inside the air, where the classify passes show that none of its rays leaves the air.
   bool ownSurfacesOnly = false;
 };
 
@@ -190,6 +191,8 @@ class SkyPass {
   // kSkyTileMixed...), and of its cloud tiles (marched, clear: kSkyCloudTileMarch...), after a
   // frame recorded in tables mode has completed.
   std::array<uint32_t, gpu::kSkyTileLists> readTileCounts();
+  // Of such counts: the compose tiles of the ground's classes (aerial, clear of the clouds, near).
+  static uint32_t groundTiles(const std::array<uint32_t, gpu::kSkyTileLists>& counts);
   // The last prepared frame's cloud samples (SkySettings::cloudScale pixels per sample each way).
   const PixelRect& cloudRegion() const { return cloudRegion_; }
 
@@ -276,6 +279,9 @@ class SkyPass {
   // Of the last prepare(): the compose may read only the clouds' shadow in the ground's tiles
   // whose rays all end before the layer (as above, with the ground's class and inside the air).
   bool clearGroundTiles_ = false;
+  // Of the last prepare(): tiles may be of the ground's classes (the depth holds only this body's
+  // surfaces, or the camera is inside the air, where the classify passes check each tile).
+  bool groundTiles_ = false;
   // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, with the
   // ground's class).
   bool nearGroundTiles_ = false;
