@@ -30,7 +30,6 @@
 
 #include "sky_tile_classes.glsl"
 
-
 // The least depth (reversed Z: the farthest surface) of compose tiles `from` to `to` (inclusive),
 // 0 where a pixel of them shows no geometry (sky_classify.comp).
 float farthestDepthOf(uvec2 from, uvec2 to) {

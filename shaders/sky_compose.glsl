@@ -296,7 +296,7 @@ float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
 //   does: the whole ray also crosses the haze under its end, which from 30 km over the Great
 //   Plains at sunset is orange, and the land took its colour (46.7 dB against the volume's 49.0;
 //   with the height limit 51.9). There the volume serves.
-// `near` (a tile of kSkyTileAerialNear or kSkyTileAerialClearNear: groundTileNear proved that
+// `near` (a tile of kSkyTileAerialNear or kSkyTileAerialClearNear: composeTileNear proved that
 // every pixel's ray ends short of that share and where the table's transmittance is trusted)
 // leaves out both, which do not change such a pixel: lavapipe runs the code of every branch.
 void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, bool near, out vec3 light,

@@ -413,10 +413,10 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // where the classify passes show that no ray of the tile leaves the air (sky_tile_classes.glsl,
   // composeTileInsideAir; from above, a ray crosses the air before it meets anything).
   groundTiles_ = ownSurfacesOnly_ || !above;
-  clearGroundTiles_ = clearCloudTiles_ && groundTiles_ && !above;
+  clearGroundTiles_ = clearCloudTiles_ && !above;
   // The ground's tiles whose rays all end well short of the ground sphere (kSkyTileNear): from
   // inside the air only, where the compose's aerial perspective reads the tables it leaves out.
-  nearGroundTiles_ = groundTiles_ && !above;
+  nearGroundTiles_ = !above;
   // The zenith angle of the ground sphere's horizon, as skyViewZenithRange finds it (from inside the
   // air its range starts at the zenith): the ground's half of the sky-view table's rows.
   const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);

@@ -282,8 +282,8 @@ class SkyPass {
   // Of the last prepare(): tiles may be of the ground's classes (the depth holds only this body's
   // surfaces, or the camera is inside the air, where the classify passes check each tile).
   bool groundTiles_ = false;
-  // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, with the
-  // ground's class).
+  // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, where the
+  // ground's class is always allowed).
   bool nearGroundTiles_ = false;
 };
 

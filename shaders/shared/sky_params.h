@@ -55,7 +55,8 @@ GPU_CONST uint kSkyTileAerialClear = 3u;
 // the ground sphere (so no pixel takes the sky-view table's light: sky_compose.glsl,
 // aerialPerspective) and ends where the transmittance table's ratio holds (transmittanceAlong's
 // trust is 1, so no pixel reads the volume's transmittance). Sorted by sky_classify.comp and
-// sky_cloud_classify.comp (groundTileNear); kSkyTileNear added to the class of the tile's kind.
+// sky_cloud_classify.comp (composeTileNear in sky_tile_classes.glsl); kSkyTileNear added to the
+// class of the tile's kind.
 GPU_CONST uint kSkyTileNear = 2u;
 GPU_CONST uint kSkyTileAerialNear = 4u;
 GPU_CONST uint kSkyTileAerialClearNear = 5u;
