@@ -237,10 +237,13 @@ void SkyPass::makePipelines(bool clouds) {
   if (!skyViewBuild_.get())
     skyViewBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_view_comp, tableLayout_.get())};
   if (settings_.mode == SkyMode::Tables) {
-    if (!aerialBuild_.get()) {
-      // Specialized on the eclipses (constant 0, as the compose's).
-      aerialBuild_ = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
-                                                                    tableLayout_.get(), {specialization_[0], 1})};
+    for (uint32_t above = 0; above < 2; ++above) {
+      if (aerialBuild_[above].get()) continue;
+      // Specialized on the eclipses (constant 0, as the compose's) and on its steps per slice.
+      const uint32_t constants[] = {specialization_[0][0],
+                                    above ? gpu::kAerialStepsPerSliceAbove : gpu::kAerialStepsPerSlice};
+      aerialBuild_[above] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
+                                                                           tableLayout_.get(), constants)};
     }
     if (!classify_.get()) {
       classifyLayout_ = {context_, vk::createPipelineLayout(context_, setLayout_.get(), sizeof(ClassifyPush),
@@ -401,6 +404,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const double radius = planet_.radiusM, top = planet_.atmosphere.heightM;
   const double altitude = std::max(view.altitudeM, groundSphere);
   const bool above = view.altitudeM >= top;
+  above_ = above;
   const double toHorizon = std::sqrt((altitude - groundSphere) * (2.0 * radius + altitude + groundSphere));
   const double highest =
       view.ownSurfacesOnly ? std::min(std::max(view.highestSurfaceM, clouds ? planet_.clouds.topM : 0.0), top) : top;
@@ -484,7 +488,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tableLayout_.get(), 0, 1, &tableSets_[slot_], 0,
                             nullptr);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_[above_ ? 1 : 0].get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
     // The cloud pass and the compose sample what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

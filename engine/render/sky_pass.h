@@ -248,7 +248,7 @@ class SkyPass {
   vk::Owned<VkDescriptorPool> tablePool_;
   vk::Owned<VkPipelineLayout> tableLayout_;
   vk::Owned<VkPipeline> skyViewBuild_;
-  vk::Owned<VkPipeline> aerialBuild_;
+  vk::Owned<VkPipeline> aerialBuild_[2];                 // [from above the air]: its steps per slice differ
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
   bool tablesInitialised_ = false;                       // the aerial volume left UNDEFINED for GENERAL
   bool skyViewInitialised_ = false;                      // the sky-view table left UNDEFINED for GENERAL
@@ -285,6 +285,8 @@ class SkyPass {
   // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, where the
   // ground's class is always allowed).
   bool nearGroundTiles_ = false;
+  // Of the last prepare(): the camera is above the air (the aerial volume's build, aerialBuild_).
+  bool above_ = false;
 };
 
 }  // namespace planet

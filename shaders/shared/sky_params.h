@@ -95,7 +95,13 @@ GPU_CONST uint kStepsTowardEnd = 2u;
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST float kAerialLogFloor = 9.094947e-13f;  // 2^-40
 GPU_CONST float kAerialBlendExcess = 2.0f;
-GPU_CONST uint kAerialStepsPerSlice = 2u;
+// Steps of the volume's march per slice: from inside the air one (its slices, gathered toward the
+// camera, are short where the air is dense; a second step moved the tables' agreement with the
+// march by 0.2 dB at most on the ground and from 10 km, and cost lavapipe 0.55 ms of the 1.35 ms
+// build at 640x360); from above two (each column splits its own crossing evenly, and one step
+// lost 0.4-0.6 dB at the limb from 100 km and from orbit).
+GPU_CONST uint kAerialStepsPerSlice = 1u;
+GPU_CONST uint kAerialStepsPerSliceAbove = 2u;
 // From inside the air, what a ray ends on at the second share of its distance to the ground
 // sphere or farther takes its light from the sky-view table (sky_compose.glsl, aerialPerspective,
 // says why), blended in from the first share.
