@@ -53,13 +53,15 @@ void main() {
   skyTiles.tiles[farthestDepthSlot(tile, push.tiles.x)] = floatBitsToUint(anySky ? 0.0f : farthest);
   uint tileClass = !anyGeometry ? kSkyTileSky : (!anySky ? kSkyTileAerial : kSkyTileMixed);
   if ((push.classes & (1u << tileClass)) == 0u) tileClass = kSkyTileMixed;
-  if (tileClass == kSkyTileAerial && push.checkAirExit != 0u && !composeTileInsideAir(tile, farthest))
+  // (The tile's rays' bounds once, for both checks below.)
+  TileRays rays = composeTileRays(tile);
+  if (tileClass == kSkyTileAerial && push.checkAirExit != 0u && !composeTileInsideAir(rays, farthest))
     tileClass = kSkyTileMixed;
   // Aerial tiles that may be clear of the cloud layer are listed by sky_cloud_classify.comp,
   // which needs their neighbours' depths.
   if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialClear)) != 0u) return;
   if (tileClass == kSkyTileAerial && (push.classes & (1u << kSkyTileAerialNear)) != 0u &&
-      composeTileNear(tile, farthest))
+      composeTileNear(rays, farthest))
     tileClass = kSkyTileAerialNear;
   appendTile(tileClass, tile);
 }

@@ -83,7 +83,8 @@ void main() {
       float farthest = farthestDepthOf(composeTile, composeTile);
       if (!(farthest > 0.0f)) continue;
       // (A tile whose rays may leave the air is mixed: sky_classify.comp lists it.)
-      if (push.checkAirExit != 0u && !composeTileInsideAir(composeTile, farthest)) continue;
+      TileRays rays = composeTileRays(composeTile);
+      if (push.checkAirExit != 0u && !composeTileInsideAir(rays, farthest)) continue;
       uvec2 near = max(composeTile, 1u) - 1u, far = min(composeTile + 1u, push.tiles - 1u);
       vec2 lo = vec2(near * kSkyWorkgroupSize);
       vec2 hi = min(vec2((far + 1u) * kSkyWorkgroupSize), sky.extent.xy);
@@ -91,7 +92,7 @@ void main() {
       uint composeClass = clearTile ? kSkyTileAerialClear : kSkyTileAerial;
       // (Whether the tile's own rays end short of the ground sphere: sky_tile_classes.glsl.)
       if ((push.classes & (1u << kSkyTileAerialNear)) != 0u &&
-          composeTileNear(composeTile, farthest))
+          composeTileNear(rays, farthest))
         composeClass += kSkyTileNear;
       appendTile(composeClass, composeTile);
     }

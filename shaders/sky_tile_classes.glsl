@@ -68,10 +68,10 @@ TileRays composeTileRays(uvec2 tile) {
 const float kDistanceMargin = 0.99f;
 const float kTrustMargin = 1.1f;
 
-// Whether every pixel of compose tile `tile`, all of whose pixels show geometry no farther than
-// depth `farthest` (reversed Z), takes its light from the aerial volume and its transmittance
-// from the table's ratio alone (kSkyTileNear; sky_compose.glsl, aerialPerspective, leaves the
-// rest out for such tiles). From inside the air that holds when
+// Whether every pixel of a compose tile whose rays are bounded by `rays` (composeTileRays), all
+// of whose pixels show geometry no farther than depth `farthest` (reversed Z), takes its light
+// from the aerial volume and its transmittance from the table's ratio alone (kSkyTileNear;
+// sky_compose.glsl, aerialPerspective, leaves the rest out for such tiles). From inside the air that holds when
 // - every ray ends short of kSkyViewGroundShareFrom of its distance to the ground sphere (where
 //   the sky-view table's light starts): that distance grows as a ray turns up, so the least is
 //   the lowest direction's; and
@@ -81,13 +81,12 @@ const float kTrustMargin = 1.1f;
 //   cosine is c = −((R + h) mu + t) / (R + h_t), at least −((R + h) mu + t) / (R + h) while that is
 //   positive (the end lies below the camera); the transmittance grows with c and with altitude,
 //   so it is at least the table's at altitude 0 and the least c of the tile.
-bool composeTileNear(uvec2 tile, float farthest) {
+bool composeTileNear(TileRays rays, float farthest) {
   AtmosphereParams a = sky.atmosphere;
   float R = a.radii.x;
   float h = sky.camera.x;
   float hGround = sky.surface.z;  // as viewRay's
   if (aerialFromAbove() || !(farthest > 0.0f) || !(h > hGround)) return false;
-  TileRays rays = composeTileRays(tile);
   if (!(rays.muHighest < 0.0f)) return false;
   float farthestEnd = tileFarthestEnd(rays, farthest);
   vec2 ground = raySphere(R, h, rays.muLowest, hGround);
@@ -98,14 +97,13 @@ bool composeTileNear(uvec2 tile, float farthest) {
   return fromEnd >= kTrustMargin * kTransmittanceTrustTo;
 }
 
-// Whether every ray of compose tile `tile`, all of whose pixels show geometry no farther than
-// depth `farthest` (reversed Z), ends before it leaves the air, seen from inside it: then none
-// shows a surface past the air's far side, which the compose sees through the whole crossing
-// from the sky-view table (sky.comp, pastAir), and the ground's classes compose the tile as the
-// mixed pipeline does. From inside, the way out of the top comes soonest on the highest ray.
-bool composeTileInsideAir(uvec2 tile, float farthest) {
+// Whether every ray of a compose tile whose rays are bounded by `rays` (composeTileRays), all of
+// whose pixels show geometry no farther than depth `farthest` (reversed Z), ends before it leaves
+// the air, seen from inside it: then none shows a surface past the air's far side, which the
+// compose sees through the whole crossing from the sky-view table (sky.comp, pastAir), and the
+// ground's classes compose the tile as the mixed pipeline does. From inside, the way out of the top comes soonest on the highest ray.
+bool composeTileInsideAir(TileRays rays, float farthest) {
   if (aerialFromAbove() || !(farthest > 0.0f)) return false;
-  TileRays rays = composeTileRays(tile);
   float exit = raySphere(sky.atmosphere.radii.x, sky.camera.x, rays.muHighest, sky.atmosphere.radii.y).x;
   return tileFarthestEnd(rays, farthest) < kDistanceMargin * exit;
 }
