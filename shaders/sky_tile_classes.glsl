@@ -71,7 +71,8 @@ const float kTrustMargin = 1.1f;
 // Whether every pixel of a compose tile whose rays are bounded by `rays` (composeTileRays), all
 // of whose pixels show geometry no farther than depth `farthest` (reversed Z), takes its light
 // from the aerial volume and its transmittance from the table's ratio alone (kSkyTileNear;
-// sky_compose.glsl, aerialPerspective, leaves the rest out for such tiles). From inside the air that holds when
+// sky_compose.glsl, aerialPerspective, leaves the rest out for such tiles). From inside the air
+// that holds when
 // - every ray ends short of kSkyViewGroundShareFrom of its distance to the ground sphere (where
 //   the sky-view table's light starts): that distance grows as a ray turns up, so the least is
 //   the lowest direction's; and
@@ -101,7 +102,8 @@ bool composeTileNear(TileRays rays, float farthest) {
 // whose pixels show geometry no farther than depth `farthest` (reversed Z), ends before it leaves
 // the air, seen from inside it: then none shows a surface past the air's far side, which the
 // compose sees through the whole crossing from the sky-view table (sky.comp, pastAir), and the
-// ground's classes compose the tile as the mixed pipeline does. From inside, the way out of the top comes soonest on the highest ray.
+// ground's classes compose the tile as the mixed pipeline does. From inside, the way out of the
+// top comes soonest on the highest ray.
 bool composeTileInsideAir(TileRays rays, float farthest) {
   if (aerialFromAbove() || !(farthest > 0.0f)) return false;
   float exit = raySphere(sky.atmosphere.radii.x, sky.camera.x, rays.muHighest, sky.atmosphere.radii.y).x;
