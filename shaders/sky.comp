@@ -229,7 +229,8 @@ void main() {
     bool aerial = kSpecTileClass == kSkyTileSky ? false : kSpecTileClass != kSkyTileMixed ? true : geometry && !pastAir;
 #endif
     if (aerial) {
-      aerialPerspective(uv, ray, tGeometry, columnStretch, kTileNear, inscatter, transmittance);
+      aerialPerspective(uv, ray, tGeometry, columnStretch, kTileNear, kTileNear || kTileClear, inscatter,
+                        transmittance);
     } else {
       inscatter = skyViewAlong(dir, h, hGround).rgb;
       // Toward the sun's disc, the stars and geometry past the air: the transmittance table

@@ -74,4 +74,22 @@ float aerialSliceEnd(uint k, vec2 columnStretch) {
   return columnStretch.x + (columnStretch.y - columnStretch.x) * x;
 }
 
+// The camera's transmittance table (shared/sky_params.h, kCameraTransmittanceDistances), from
+// inside the air: the texture coordinates of distance t along a ray of zenith cosine mu
+// (common/atmosphere.glsl, cameraTransmittanceUnit: out to the volume's farthest distance,
+// sky.aerial.y, from the ground sphere's horizon, whose cosine is sky.aerial.w). Texel centres
+// fall on the ends of each range (unitToTexel): the first column is the camera's (no air).
+vec2 cameraTransmittanceUv(float mu, float t) {
+  vec2 unit = cameraTransmittanceUnit(mu, t, sky.aerial.w, sky.aerial.y);
+  return vec2(unitToTexel(unit.x, float(kCameraTransmittanceDistances)),
+              unitToTexel(unit.y, float(kCameraTransmittanceDirections)));
+}
+
+// The inverse, for the table's build: the distance (x) and zenith cosine (y) of texel (i, j).
+vec2 cameraTransmittanceTexel(uint i, uint j) {
+  return cameraTransmittanceDistanceMu(float(i) / float(kCameraTransmittanceDistances - 1u),
+                                       float(j) / float(kCameraTransmittanceDirections - 1u), sky.aerial.w,
+                                       sky.aerial.y);
+}
+
 #endif

@@ -13,8 +13,8 @@
 //   ring, or terrain whose bound reaches above the top may lie past the air and take the
 //   sky-view table: with those in the frame such a tile is aerial only when, from inside the
 //   air, its rays are shown to end before they leave it (push.checkAirExit:
-//   composeTileInsideAir in sky_tile_classes.glsl), else mixed. Those whose rays all end well short of the ground sphere, where the
-//   transmittance table's ratio holds, are listed apart (kSkyTileAerialNear: composeTileNear in
+//   composeTileInsideAir in sky_tile_classes.glsl), else mixed. Those whose rays all end well
+//   short of the ground sphere are listed apart (kSkyTileAerialNear: composeTileNear in
 //   sky_tile_classes.glsl), for a pipeline without the code that serves the others;
 // - mixed: the rest, composed by the pipeline with both sides.
 // From below the cloud layer (the classes' kSkyTileAerialClear bit), the aerial tiles are left

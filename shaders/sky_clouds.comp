@@ -71,7 +71,7 @@ void main() {
     float R = sky.atmosphere.radii.x;
     vec2 columnStretch = aerialColumnStretch(R, sky.camera.x, ray.dir.z, ray.hGround);
     vec3 frontLight, frontTransmittance;
-    aerialPerspective(uv, ray, tCloud, columnStretch, false, frontLight, frontTransmittance);
+    aerialPerspective(uv, ray, tCloud, columnStretch, false, false, frontLight, frontTransmittance);
     composite = (1.0f - transmittance) * frontLight + frontTransmittance * light;
   }
   imageStore(cloudSampleLight, cell, vec4(composite * kSkyHalfLightScale, transmittance));

@@ -21,6 +21,7 @@ layout(set = 0, binding = kSkyBindingMultipleScattering) uniform sampler2D multi
 layout(set = 0, binding = kSkyBindingSkyView) uniform sampler2D skyView;
 layout(set = 0, binding = kSkyBindingAerialLight) uniform sampler3D aerialLight;
 layout(set = 0, binding = kSkyBindingAerialTransmittance) uniform sampler3D aerialTransmittance;
+layout(set = 0, binding = kSkyBindingCameraTransmittance) uniform sampler2D cameraTransmittance;
 
 #define MULTIPLE_SCATTERING(a, h, muS) \
   textureLod(multipleScatteringTable, multipleScatteringUv(a, h, muS), 0.0f).rgb
@@ -158,28 +159,10 @@ void marchLayer(vec3 dir, float R, float h, float mu, vec2 first, vec2 second, u
   }
 }
 
-// The transmittance of the air between a camera inside it (altitude h) and distance t along a
-// ray of zenith cosine mu, from two reads of the transmittance table: the ratio of the
-// transmittances to the top from the segment's two ends, both along the segment's upward
-// direction, so that neither meets the ground (Bruneton & Neyret 2008). `trust`, from 0 to 1,
-// says how far it holds: near the horizon the transmittance to the top from the segment's lower
-// end is tiny, and the ratio of two such values read from the table is far off (from the ground
-// toward mountains 200 km away, 0.013 where the march gives 0.027). It is 1 where that value
-// (green) is above kTransmittanceTrustTo (10⁻²), 0 below kTransmittanceTrustFrom (10⁻³).
-vec3 transmittanceAlong(AtmosphereParams a, float h, float mu, float t, out float trust) {
-  float R = a.radii.x;
-  float ht = altitudeAlong(R, h, mu, t);
-  float muT = clamp(((R + h) * mu + t) / (R + ht), -1.0f, 1.0f);
-  // To the top, from the segment's lower end and from its upper end: the camera is the upper end
-  // of a ray going down. (Chosen before the reads, not by a branch around them: lavapipe runs
-  // both sides of a branch, four reads of the table where two serve.)
-  bool down = mu < 0.0f;
-  vec2 low = down ? vec2(max(ht, 0.0f), -muT) : vec2(h, mu);
-  vec2 high = down ? vec2(h, -mu) : vec2(ht, muT);
-  vec3 fromLow = textureLod(transmittanceTable, transmittanceUv(a, low.x, low.y), 0.0f).rgb;
-  vec3 fromHigh = textureLod(transmittanceTable, transmittanceUv(a, high.x, high.y), 0.0f).rgb;
-  trust = smoothstep(kTransmittanceTrustFrom, kTransmittanceTrustTo, fromLow.y);
-  return clamp(fromLow / max(fromHigh, vec3(1.0e-30f)), vec3(0.0f), vec3(1.0f));
+// The transmittance of the air between a camera inside it and distance t along a ray of zenith
+// cosine mu: one read of the camera's transmittance table (sky_camera_transmittance.comp).
+vec3 transmittanceFromCamera(float mu, float t) {
+  return exp(-textureLod(cameraTransmittance, cameraTransmittanceUv(mu, t), 0.0f).rgb);
 }
 
 // The depths of the 2×2 pixels from `pixel` (one gather, in its component order: x (+0, +1),
@@ -268,10 +251,10 @@ float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
 // The tables' atmosphere between the camera and distance t along the pixel's ray (screen
 // position uv, zenith cosine mu): light scattered toward the camera and transmittance, from the
 // aerial-perspective volume filtered across its columns.
-// - The transmittance, from inside the air, is the pixel's own ray's from the transmittance table
-//   (transmittanceAlong); from above the air, and where the table cannot be trusted, the volume's
-//   optical depth filtered between the two slices around t (from above they split each column's
-//   own stretch through the air).
+// - The transmittance, from inside the air, is the pixel's own ray's from the camera's
+//   transmittance table (transmittanceFromCamera); from above the air the volume's optical depth
+//   filtered between the two slices around t (from above they split each column's own stretch
+//   through the air).
 // - The light, from inside the air, is the columns' at the pixel's opacity 1 − T (green), which
 //   indexes the light's volume (from above, distance does, as for the depth). The light gathered
 //   along a ray grows with its opacity at the rate of the air's own light, which changes slowly,
@@ -297,22 +280,25 @@ float skyEclipse(vec3 dir, vec2 stretch, uint spacing) {
 //   Plains at sunset is orange, and the land took its colour (46.7 dB against the volume's 49.0;
 //   with the height limit 51.9). There the volume serves.
 // `near` (a tile of kSkyTileAerialNear or kSkyTileAerialClearNear: composeTileNear proved that
-// every pixel's ray ends short of that share and where the table's transmittance is trusted)
-// leaves out both, which do not change such a pixel: lavapipe runs the code of every branch.
-void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, bool near, out vec3 light,
+// every pixel's ray ends short of that share) leaves that out, which does not change such a
+// pixel; `inside` (a tile of those or of kSkyTileAerialClear, all classes seen from inside the
+// air) leaves out the reads from above. Both are constants where the tile's class is: lavapipe
+// runs the code of every branch.
+void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, bool near, bool inside, out vec3 light,
                        out vec3 transmittance) {
   float mu = ray.dir.z;
+  bool fromAbove = !inside && aerialFromAbove();
   // Slice k ends at aerialSlice k; the volume holds the camera in its first slice, k in k + 1.
-  float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
-  vec3 bySlice = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
-  float trust = 0.0f;
-  if (!aerialFromAbove()) transmittance = transmittanceAlong(sky.atmosphere, sky.camera.x, mu, t, trust);
-  if (!near && trust < 1.0f) {
-    vec3 byVolume = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
-    transmittance = trust > 0.0f ? mix(byVolume, transmittance, trust) : byVolume;
+  vec3 bySlice = vec3(0.0f);
+  if (fromAbove) {
+    float slice = min(aerialSlice(t, columnStretch), float(kAerialSize) - 1.0f) + 1.0f;
+    bySlice = vec3(uv, (slice + 0.5f) / float(kAerialSize + 1u));
+    transmittance = exp(-textureLod(aerialTransmittance, bySlice, 0.0f).rgb);
+  } else {
+    transmittance = transmittanceFromCamera(mu, t);
   }
   float share = 0.0f, theta = 0.0f;
-  if (!near && !aerialFromAbove() && ray.seesGround) {
+  if (!near && !fromAbove && ray.seesGround) {
     theta = atan(length(ray.dir.xy), mu);
     float above = altitudeAlong(sky.atmosphere.radii.x, sky.camera.x, mu, t) - ray.hGround;
     // The horizon's distance in rows of the volume's columns.
@@ -325,7 +311,8 @@ void aerialPerspective(vec2 uv, ViewRay ray, float t, vec2 columnStretch, bool n
   if (share < 1.0f) {
     float level = (1.0f - transmittance.y) * float(kAerialSize);
     vec3 byLevel = vec3(uv, (level + 0.5f) / float(kAerialSize + 1u));
-    light = aerialDecodeLight(textureLod(aerialLight, aerialFromAbove() ? bySlice : byLevel, 0.0f));
+    vec4 texel = textureLod(aerialLight, fromAbove ? bySlice : byLevel, 0.0f);
+    light = fromAbove ? aerialDecodeLight(texel) : texel.rgb * (1.0f / kSkyHalfLightScale);
   }
   if (share > 0.0f) {
     vec4 whole = skyViewAt(ray.dir, theta, vec2(0.0f, sky.aerial.z));  // inside the air: from the zenith

@@ -63,39 +63,24 @@ TileRays composeTileRays(uvec2 tile) {
 }
 
 // How close to a bound the tiles' own rounding may bring a pixel's value: the distances to the
-// ground sphere (a share of it) and out of the air, and the transmittance the table's ratio is
-// trusted from.
+// ground sphere (a share of it) and out of the air.
 const float kDistanceMargin = 0.99f;
-const float kTrustMargin = 1.1f;
 
 // Whether every pixel of a compose tile whose rays are bounded by `rays` (composeTileRays), all
 // of whose pixels show geometry no farther than depth `farthest` (reversed Z), takes its light
-// from the aerial volume and its transmittance from the table's ratio alone (kSkyTileNear;
-// sky_compose.glsl, aerialPerspective, leaves the rest out for such tiles). From inside the air
-// that holds when
-// - every ray ends short of kSkyViewGroundShareFrom of its distance to the ground sphere (where
-//   the sky-view table's light starts): that distance grows as a ray turns up, so the least is
-//   the lowest direction's; and
-// - every ray goes down and ends before its lowest point, with the transmittance to the top from
-//   its end, back along it, at least kTransmittanceTrustTo (transmittanceAlong's trust is 1).
-//   Back along a ray of zenith cosine mu from its end at distance t and altitude h_t, the zenith
-//   cosine is c = −((R + h) mu + t) / (R + h_t), at least −((R + h) mu + t) / (R + h) while that is
-//   positive (the end lies below the camera); the transmittance grows with c and with altitude,
-//   so it is at least the table's at altitude 0 and the least c of the tile.
+// from the aerial volume alone (kSkyTileNear; sky_compose.glsl, aerialPerspective, leaves the
+// sky-view table's light out for such tiles). From inside the air that holds when every ray ends
+// short of kSkyViewGroundShareFrom of its distance to the ground sphere (where the sky-view
+// table's light starts), or misses that sphere: that distance grows as a ray turns up, so the
+// least is the lowest direction's.
 bool composeTileNear(TileRays rays, float farthest) {
-  AtmosphereParams a = sky.atmosphere;
-  float R = a.radii.x;
+  float R = sky.atmosphere.radii.x;
   float h = sky.camera.x;
   float hGround = sky.surface.z;  // as viewRay's
   if (aerialFromAbove() || !(farthest > 0.0f) || !(h > hGround)) return false;
-  if (!(rays.muHighest < 0.0f)) return false;
-  float farthestEnd = tileFarthestEnd(rays, farthest);
   vec2 ground = raySphere(R, h, rays.muLowest, hGround);
-  if (ground.x >= 0.0f && !(farthestEnd < kDistanceMargin * kSkyViewGroundShareFrom * ground.x)) return false;
-  float cosBack = -((R + h) * rays.muHighest + farthestEnd) / (R + h);
-  if (!(cosBack > 0.0f)) return false;
-  float fromEnd = textureLod(transmittanceTable, transmittanceUv(a, 0.0f, cosBack), 0.0f).g;
-  return fromEnd >= kTrustMargin * kTransmittanceTrustTo;
+  return !(ground.x >= 0.0f) ||
+         tileFarthestEnd(rays, farthest) < kDistanceMargin * kSkyViewGroundShareFrom * ground.x;
 }
 
 // Whether every ray of a compose tile whose rays are bounded by `rays` (composeTileRays), all of

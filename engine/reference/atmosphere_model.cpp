@@ -136,6 +136,17 @@ glm::dvec3 transmittanceToTop(const AtmosphereParams& atmosphere, double altitud
   return glm::exp(-depth);
 }
 
+glm::dvec3 transmittanceAlong(const AtmosphereParams& atmosphere, double altitudeM, double mu, double distanceM,
+                              uint32_t steps) {
+  Kernel kernel;
+  return glm::exp(-kernel.opticalDepthAlong(atmosphere, altitudeM, mu, distanceM, steps));
+}
+
+glm::dvec2 cameraTransmittanceUnit(double mu, double distanceM, double muHorizon, double farthestM) {
+  Kernel kernel;
+  return kernel.cameraTransmittanceUnit(mu, distanceM, muHorizon, farthestM);
+}
+
 glm::dvec2 transmittanceTexelAltitudeMu(const AtmosphereParams& atmosphere, double u, double v) {
   Kernel kernel;
   return kernel.transmittanceAltitudeMu(atmosphere, u, v);

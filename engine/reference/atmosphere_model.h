@@ -38,6 +38,16 @@ AirglowLight airglowAlong(const gpu::AirglowParams& airglow, double radiusM, dou
 glm::dvec3 transmittanceToTop(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu,
                               uint32_t steps = 4096);
 
+// Transmittance from altitude h along zenith cosine mu over the first `distanceM` metres of the
+// ray, by `steps` midpoint steps in double; past the ground the air keeps its density there.
+glm::dvec3 transmittanceAlong(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu, double distanceM,
+                              uint32_t steps = 4096);
+
+// The unit coordinates (x by distance, y by zenith cosine) of the camera's transmittance table
+// (shaders/common/atmosphere.glsl, cameraTransmittanceUnit) for distance t along a ray of zenith
+// cosine mu, a ground horizon of zenith cosine muHorizon and a table out to farthestM.
+glm::dvec2 cameraTransmittanceUnit(double mu, double distanceM, double muHorizon, double farthestM);
+
 // The altitude (x) and zenith cosine (y) that transmittance-table coordinates (u, v) in [0, 1]
 // stand for (the table's parameterisation, shaders/common/atmosphere.glsl).
 glm::dvec2 transmittanceTexelAltitudeMu(const gpu::AtmosphereParams& atmosphere, double u, double v);

@@ -11,6 +11,7 @@
 #include "render/sky_tables.h"
 #include "spv/aerial_perspective.comp.h"
 #include "spv/sky.comp.h"
+#include "spv/sky_camera_transmittance.comp.h"
 #include "spv/sky_classify.comp.h"
 #include "spv/sky_cloud_classify.comp.h"
 #include "spv/sky_clouds.comp.h"
@@ -41,10 +42,13 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud light (the cloud pass writes it, the compose reads it)
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud end (likewise)
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // the tiles by class (the classify pass writes them, the compose reads them)
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the camera's transmittance
 };
-static_assert(std::size(kComposeBindings) == gpu::kSkyBindingTiles + 1, "one descriptor type per compose binding");
+static_assert(std::size(kComposeBindings) == gpu::kSkyBindingCameraTransmittance + 1,
+              "one descriptor type per compose binding");
 
-// The per-frame table builds (sky_view.comp, aerial_perspective.comp): one layout for both.
+// The per-frame table builds (sky_view.comp, aerial_perspective.comp, sky_camera_transmittance.comp):
+// one layout for all.
 constexpr VkDescriptorType kTableBindings[] = {
     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,          // per-frame values (SkyUniforms)
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // transmittance
@@ -52,7 +56,14 @@ constexpr VkDescriptorType kTableBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // sky view
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial light
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // aerial transmittance
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // the camera's transmittance
 };
+static_assert(std::size(kTableBindings) == gpu::kSkyTableBindingCameraTransmittance + 1,
+              "one descriptor type per table binding");
+
+// The camera's transmittance table's build runs whole workgroups, one row each invocation.
+static_assert(gpu::kCameraTransmittanceDirections % gpu::kCameraTransmittanceWorkgroup == 0,
+              "the camera's transmittance table's rows fill its build's workgroups");
 
 // The cloud pass's images (shaders/shared/sky_params.h, kSkyBindingCloudLight and kSkyBindingCloudEnd):
 // distances need float's range and precision; light and transmittance do with half floats, the
@@ -179,6 +190,11 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                                              kAerialFormat, kTableUsage)};
   aerialTransmittance_ = {context, vk::createImage3D(context, {gpu::kAerialSize, gpu::kAerialSize},
                                                      gpu::kAerialSize + 1, kAerialFormat, kTableUsage)};
+  // The camera's transmittance table (shaders/sky_camera_transmittance.comp): optical depth in
+  // float, filtered (the sky-view table's format).
+  cameraTransmittance_ = {
+      context, vk::createImage2D(context, {gpu::kCameraTransmittanceDistances, gpu::kCameraTransmittanceDirections},
+                                 kTableFormat, kTableUsage)};
   tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
   tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
@@ -201,6 +217,8 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                              tables.sampler());
     vk::writeImageDescriptor(context, set, gpu::kSkyBindingAerialTransmittance, kSampled, aerialTransmittance_->view,
                              kGeneral, tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingCameraTransmittance, kSampled, cameraTransmittance_->view,
+                             kGeneral, tables.sampler());
 
     VkDescriptorSet tableSet = tableSets_[slot] = vk::allocateSet(context, tablePool_.get(), tableSetLayout_.get());
     vk::writeBufferDescriptor(context, tableSet, gpu::kSkyTableBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
@@ -216,6 +234,8 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                              aerialLight_->view, kGeneral);
     vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingAerialTransmittance,
                              VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, aerialTransmittance_->view, kGeneral);
+    vk::writeImageDescriptor(context, tableSet, gpu::kSkyTableBindingCameraTransmittance,
+                             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, cameraTransmittance_->view, kGeneral);
   }
   makePipelines();
 }
@@ -245,6 +265,9 @@ void SkyPass::makePipelines(bool clouds) {
       aerialBuild_[above] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
                                                                            tableLayout_.get(), constants)};
     }
+    if (!cameraTransmittanceBuild_.get())
+      cameraTransmittanceBuild_ = {context_, vk::createComputePipelineWithLayout(
+                                                 context_, kSpv_sky_camera_transmittance_comp, tableLayout_.get())};
     if (!classify_.get()) {
       classifyLayout_ = {context_, vk::createPipelineLayout(context_, setLayout_.get(), sizeof(ClassifyPush),
                                                             VK_SHADER_STAGE_COMPUTE_BIT)};
@@ -418,13 +441,11 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // composeTileInsideAir; from above, a ray crosses the air before it meets anything).
   groundTiles_ = ownSurfacesOnly_ || !above;
   clearGroundTiles_ = clearCloudTiles_ && !above;
-  // The ground's tiles whose rays all end well short of the ground sphere (kSkyTileNear): from
-  // inside the air only, where the compose's aerial perspective reads the tables it leaves out.
-  nearGroundTiles_ = !above;
   // The zenith angle of the ground sphere's horizon, as skyViewZenithRange finds it (from inside the
   // air its range starts at the zenith): the ground's half of the sky-view table's rows.
   const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);
-  u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), float(horizonZenith), 0.0f);
+  u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), float(horizonZenith),
+                       float(std::cos(horizonZenith)));
   // The sky-view table: built again only when its inputs moved beyond the tolerances.
   const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
   const SkyViewInputs* built = skyViewBuiltFor_ ? &*skyViewBuiltFor_ : nullptr;
@@ -478,7 +499,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (tables) {
     if (!tablesInitialised_) {
       // The volume starts undefined and stays in GENERAL: written by the build, sampled after.
-      for (vk::Owned<vk::Image>* image : {&aerialLight_, &aerialTransmittance_})
+      for (vk::Owned<vk::Image>* image : {&aerialLight_, &aerialTransmittance_, &cameraTransmittance_})
         vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
       tablesInitialised_ = true;
@@ -490,6 +511,10 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                             nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_[above_ ? 1 : 0].get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
+    if (!above_) {  // from above, the compose reads the volume's transmittance
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cameraTransmittanceBuild_.get());
+      vkCmdDispatch(cmd, gpu::kCameraTransmittanceDirections / gpu::kCameraTransmittanceWorkgroup, 1, 1);
+    }
     // The cloud pass and the compose sample what the builds wrote.
     vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, compute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
@@ -518,7 +543,9 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
     if (settings_.tileClasses) classes = (1u << gpu::kSkyTileSky) | (groundTiles_ ? 1u << gpu::kSkyTileAerial : 0u);
     if (clearCloudTiles_) classes |= 1u << gpu::kSkyCloudTileClear;
     if (clearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialClear;
-    if (settings_.tileClasses && nearGroundTiles_) classes |= 1u << gpu::kSkyTileAerialNear;
+    // The ground's tiles whose rays all end well short of the ground sphere (kSkyTileNear): from
+    // inside the air only, where the compose's aerial perspective reads the tables it leaves out.
+    if (settings_.tileClasses && !above_) classes |= 1u << gpu::kSkyTileAerialNear;
     const uint32_t cloudGroupsX = (cloudRegion_.width() + group - 1) / group,
                    cloudGroupsY = (cloudRegion_.height() + group - 1) / group;
     const ClassifyPush push{groupsX, groupsY, cloudGroupsX, cloudGroupsY, classes, ownSurfacesOnly_ ? 0u : 1u};
@@ -573,15 +600,23 @@ uint32_t SkyPass::groundTiles(const std::array<uint32_t, gpu::kSkyTileLists>& co
          counts[gpu::kSkyTileAerialClearNear];
 }
 
-std::vector<glm::vec4> SkyPass::readSkyView() {
-  std::vector<glm::vec4> texels = vk::readbackRgbaFloat(context_, *skyView_);
-  // Back to what the builds and the compose expect.
-  vk::submitAndWait(context_, [&](VkCommandBuffer cmd) {
-    vk::transitionImage(cmd, *skyView_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+namespace {
+
+// A table's texels, left in GENERAL again for the builds and the compose.
+std::vector<glm::vec4> readTable(vk::Context& context, vk::Image& table) {
+  std::vector<glm::vec4> texels = vk::readbackRgbaFloat(context, table);
+  vk::submitAndWait(context, [&](VkCommandBuffer cmd) {
+    vk::transitionImage(cmd, table, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   });
   return texels;
 }
+
+}  // namespace
+
+std::vector<glm::vec4> SkyPass::readSkyView() { return readTable(context_, *skyView_); }
+
+std::vector<glm::vec4> SkyPass::readCameraTransmittance() { return readTable(context_, *cameraTransmittance_); }
 
 }  // namespace planet

@@ -168,6 +168,12 @@ class SkyPass {
   // For tests: this frame's sky-view table (rgb, row-major kSkyViewWidth × kSkyViewHeight), after
   // a frame recorded in tables mode has completed.
   std::vector<glm::vec4> readSkyView();
+  // For tests: the camera's transmittance table (optical depth in rgb, row-major
+  // kCameraTransmittanceDistances × kCameraTransmittanceDirections), after a frame recorded in
+  // tables mode from inside the air has completed; and the last prepared frame's uniforms
+  // (aerial.y and aerial.w give the table's reach and its horizon).
+  std::vector<glm::vec4> readCameraTransmittance();
+  const gpu::SkyUniforms& uniforms() const { return uniformData_; }
 
   // The sky-view table depends on the atmosphere, the camera's altitude, the ground sphere and
   // the sun's zenith angle only (sky_view.comp). A frame whose altitude is within
@@ -244,13 +250,15 @@ class SkyPass {
   vk::Owned<vk::Image> skyView_;
   vk::Owned<vk::Image> aerialLight_;
   vk::Owned<vk::Image> aerialTransmittance_;
+  vk::Owned<vk::Image> cameraTransmittance_;  // from inside the air (shaders/sky_camera_transmittance.comp)
   vk::Owned<VkDescriptorSetLayout> tableSetLayout_;
   vk::Owned<VkDescriptorPool> tablePool_;
   vk::Owned<VkPipelineLayout> tableLayout_;
   vk::Owned<VkPipeline> skyViewBuild_;
   vk::Owned<VkPipeline> aerialBuild_[2];                 // [from above the air]: its steps per slice differ
+  vk::Owned<VkPipeline> cameraTransmittanceBuild_;       // sky_camera_transmittance.comp (tables mode)
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
-  bool tablesInitialised_ = false;                       // the aerial volume left UNDEFINED for GENERAL
+  bool tablesInitialised_ = false;  // the aerial volume and the camera's table left UNDEFINED for GENERAL
   bool skyViewInitialised_ = false;                      // the sky-view table left UNDEFINED for GENERAL
   // What the sky-view table was last built for, and whether the last prepared frame builds it.
   struct SkyViewInputs {
@@ -282,10 +290,9 @@ class SkyPass {
   // Of the last prepare(): tiles may be of the ground's classes (the depth holds only this body's
   // surfaces, or the camera is inside the air, where the classify passes check each tile).
   bool groundTiles_ = false;
-  // Of the last prepare(): the ground's tiles may be near (kSkyTileNear: inside the air, where the
-  // ground's class is always allowed).
-  bool nearGroundTiles_ = false;
-  // Of the last prepare(): the camera is above the air (the aerial volume's build, aerialBuild_).
+  // Of the last prepare(): the camera is above the air (the aerial volume's build, aerialBuild_;
+  // the camera's transmittance table, built only from inside; the ground's tiles may be near,
+  // kSkyTileNear, only from inside, where the ground's class is always allowed).
   bool above_ = false;
 };
 

@@ -112,6 +112,40 @@ vec3 opticalDepthToTop(IN(AtmosphereParams) a, real h, real mu, uint steps) {
   return sum * dt;
 }
 
+// Optical depth from altitude h along mu over the first t metres of the ray, by the midpoint rule
+// with `steps` equal steps (past the ground the air keeps its density there: extinctionAt).
+vec3 opticalDepthAlong(IN(AtmosphereParams) a, real h, real mu, real t, uint steps) {
+  real R = real(a.radii.x);
+  real dt = t / real(steps);
+  vec3 sum = vec3(real(0.0f), real(0.0f), real(0.0f));
+  for (uint i = 0u; i < steps; ++i) sum = sum + extinctionAt(a, altitudeAlong(R, h, mu, (real(i) + real(0.5f)) * dt));
+  return sum * dt;
+}
+
+// The camera's transmittance table's parameterisation (shared/sky_params.h,
+// kCameraTransmittanceDistances; sky_camera_transmittance.comp builds it from inside the air):
+// the unit coordinates of distance t along a ray of zenith cosine mu, for a camera whose ground
+// sphere's horizon has zenith cosine muHorizon and whose table reaches out to `farthest`.
+// - x = sqrt(t / farthest): the texels gather toward the camera, as the aerial volume's slices do.
+// - y: mu's share of the way from the horizon to straight up maps by its square root to
+//   [0.5, 1], its share of the way to straight down to [0.5, 0]: the optical depth to a given
+//   distance changes fastest with mu near the horizon, where the rays graze the dense air.
+vec2 cameraTransmittanceUnit(real mu, real t, real muHorizon, real farthest) {
+  real above = mu - muHorizon;
+  real share = above / (above >= real(0.0f) ? real(1.0f) - muHorizon : real(1.0f) + muHorizon);
+  real root = sqrt(min(abs(share), real(1.0f)));
+  real y = real(0.5f) + real(0.5f) * (share >= real(0.0f) ? root : -root);
+  return vec2(sqrt(clamp(t / farthest, real(0.0f), real(1.0f))), y);
+}
+
+// The inverse: the distance (x) and zenith cosine (y) at unit coordinates (x, y).
+vec2 cameraTransmittanceDistanceMu(real x, real y, real muHorizon, real farthest) {
+  real z = real(2.0f) * y - real(1.0f);
+  real share = z >= real(0.0f) ? z * z : -z * z;
+  real mu = muHorizon + share * (share >= real(0.0f) ? real(1.0f) - muHorizon : real(1.0f) + muHorizon);
+  return vec2(farthest * x * x, clamp(mu, real(-1.0f), real(1.0f)));
+}
+
 // The transmittance table's parameterisation (Bruneton & Neyret 2008, as in its 2017 reference
 // code): v = ρ / H with ρ = sqrt(r² − R²) and H = sqrt(top² − R²); u places the distance to the
 // top between its minimum (straight up) and its maximum (toward the horizon) at that altitude.
