@@ -24,6 +24,11 @@ layout(constant_id = 2) const uint kSpecCloudTileClass = kSkyCloudTileMarch;
 layout(set = 0, binding = kSkyBindingCloudLight, rgba16f) uniform writeonly image2D cloudSampleLight;
 layout(set = 0, binding = kSkyBindingCloudEnd, rgba32f) uniform writeonly image2D cloudSampleEnd;
 
+// The share of the whole ray's opacity in front of a cloud from which the light in front of it
+// is the sky-view table's (main).
+const float kCloudSkyShareFrom = 0.9f;
+const float kCloudSkyShareTo = 0.98f;
+
 // The largest ratio of distances within a block of pixels that are taken for one surface.
 const float kOneSurfaceRatio = 1.05f;
 
@@ -72,6 +77,20 @@ void main() {
     vec2 columnStretch = aerialColumnStretch(R, sky.camera.x, ray.dir.z, ray.hGround);
     vec3 frontLight, frontTransmittance;
     aerialPerspective(uv, ray, tCloud, columnStretch, false, false, frontLight, frontTransmittance);
+    // From inside the air, a cloud toward the horizon lies behind nearly all of its ray's air: the
+    // light in front of it is then the sky-view table's along the whole ray, times the share of
+    // that ray's opacity in front of the cloud (as for the ground near the ground sphere,
+    // aerialPerspective), blended in from kCloudSkyShareFrom of it. The volume's columns are
+    // too far apart there: a column's ray a few rows higher ends before that opacity, and the
+    // line of distant clouds along the horizon from the ground was 3 of 255 darker than the
+    // march.
+    if (!aerialFromAbove() && !ray.seesGround) {
+      vec4 whole = skyViewAlong(ray.dir, sky.camera.x, ray.hGround);
+      float opacityShare = clamp((1.0f - frontTransmittance.y) / max(whole.a, 1.0e-6f), 0.0f, 1.0f);
+      float share = smoothstep(kCloudSkyShareFrom, kCloudSkyShareTo, opacityShare);
+      float eclipse = skyEclipse(ray.dir, vec2(0.0f, tCloud), skyStepSpacing(sky.atmosphere, sky.camera.x, false));
+      frontLight = mix(frontLight, whole.rgb * opacityShare * eclipse, share);
+    }
     composite = (1.0f - transmittance) * frontLight + frontTransmittance * light;
   }
   imageStore(cloudSampleLight, cell, vec4(composite * kSkyHalfLightScale, transmittance));
