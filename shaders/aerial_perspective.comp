@@ -5,8 +5,9 @@
 // end of each of the column's kAerialSize slices, the latter as the optical depth; and the light
 // by the column's opacity rather than its distance (sky_compose.glsl, aerialPerspective, says
 // why). One invocation marches a whole column, kSpecStepsPerSlice steps per slice
-// (common/atmosphere.glsl, scatteringStep), and stops where the ray meets the ground sphere: slices past it keep the value there. The
-// scene's other bodies darken the samples in their shadows (eclipses, common/eclipse.glsl).
+// (common/atmosphere.glsl, scatteringStep), and stops where the ray meets the ground sphere:
+// slices past it keep the value there. The scene's other bodies darken the samples in their
+// shadows (eclipses, common/eclipse.glsl).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/sky_params.h"

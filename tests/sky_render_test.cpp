@@ -806,17 +806,16 @@ TEST_F(SkyRender, CameraTransmittanceTableMatchesTheIntegralAlongEachRay) {
   constexpr uint32_t kWidth = gpu::kCameraTransmittanceDistances, kHeight = gpu::kCameraTransmittanceDirections;
   for (const Case& c : cases) {
     renderer.render({20, -30, c.altitudeM, 0, -10}, {135, 30});
-    const std::vector<glm::vec4> table = renderer.sky().readCameraTransmittance();
-    ASSERT_EQ(table.size(), size_t(kWidth) * kHeight);
+    const std::vector<glm::vec4> texels = renderer.sky().readCameraTransmittance();
+    ASSERT_EQ(texels.size(), size_t(kWidth) * kHeight);
+    const std::vector<glm::dvec3> table(texels.begin(), texels.end());
     const gpu::SkyUniforms& u = renderer.sky().uniforms();
     const double R = params.radii.x, h = u.camera.x, hGround = u.surface.z;
     const double farthest = u.aerial.y, muHorizon = u.aerial.w;
-    // The GPU's linear filter; unit coordinates 0 and 1 fall on the first and last texels' centres.
+    // As the compose reads it: unit coordinates 0 and 1 fall on the first and last texels' centres.
     const auto read = [&](glm::dvec2 unit) {
-      const double x = unit.x * (kWidth - 1), y = unit.y * (kHeight - 1);
-      const int i = std::min(int(x), int(kWidth) - 2), j = std::min(int(y), int(kHeight) - 2);
-      const auto at = [&](int di, int dj) { return glm::dvec3(table[size_t(j + dj) * kWidth + size_t(i + di)]); };
-      return glm::mix(glm::mix(at(0, 0), at(1, 0), x - i), glm::mix(at(0, 1), at(1, 1), x - i), y - j);
+      return sampleBilinear(table, kWidth, kHeight, (0.5 + unit.x * (kWidth - 1)) / kWidth,
+                            (0.5 + unit.y * (kHeight - 1)) / kHeight);
     };
     std::mt19937 random(7);
     std::normal_distribution<double> nearHorizon(0.0, 0.05);

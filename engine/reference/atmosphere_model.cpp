@@ -29,8 +29,8 @@ using gpu::kTransmittanceHeight;
 using gpu::kTransmittanceSteps;
 using gpu::kTransmittanceWidth;
 
-// A table of width × height texels read as the GPU's linear sampler with clamp-to-edge reads
-// it: (u, v) in [0, 1], texel centres at (i + 0.5) / size.
+}  // namespace
+
 glm::dvec3 sampleBilinear(const std::vector<glm::dvec3>& table, uint32_t width, uint32_t height, double u, double v) {
   const double x = u * width - 0.5, y = v * height - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
@@ -42,6 +42,8 @@ glm::dvec3 sampleBilinear(const std::vector<glm::dvec3>& table, uint32_t width, 
   return glm::mix(glm::mix(at(x0, y0), at(x0 + 1.0, y0), fx), glm::mix(at(x0, y0 + 1.0), at(x0 + 1.0, y0 + 1.0), fx),
                   fy);
 }
+
+namespace {
 
 // shaders/common/atmosphere.glsl compiled as C++: its functions become members, so that one
 // source gives the GPU code and this reference.

@@ -38,6 +38,10 @@ AirglowLight airglowAlong(const gpu::AirglowParams& airglow, double radiusM, dou
 glm::dvec3 transmittanceToTop(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu,
                               uint32_t steps = 4096);
 
+// A row-major table of width × height texels read as the GPU's linear sampler with clamp-to-edge
+// reads it: (u, v) in [0, 1], texel centres at (i + 0.5) / size.
+glm::dvec3 sampleBilinear(const std::vector<glm::dvec3>& table, uint32_t width, uint32_t height, double u, double v);
+
 // Transmittance from altitude h along zenith cosine mu over the first `distanceM` metres of the
 // ray, by `steps` midpoint steps in double; past the ground the air keeps its density there.
 glm::dvec3 transmittanceAlong(const gpu::AtmosphereParams& atmosphere, double altitudeM, double mu, double distanceM,

@@ -260,10 +260,10 @@ void SkyPass::makePipelines(bool clouds) {
     for (uint32_t above = 0; above < 2; ++above) {
       if (aerialBuild_[above].get()) continue;
       // Specialized on the eclipses (constant 0, as the compose's) and on its steps per slice.
-      const uint32_t constants[] = {specialization_[0][0],
-                                    above ? gpu::kAerialStepsPerSliceAbove : gpu::kAerialStepsPerSlice};
+      const uint32_t aerialConstants[] = {specialization_[0][0],
+                                          above ? gpu::kAerialStepsPerSliceAbove : gpu::kAerialStepsPerSlice};
       aerialBuild_[above] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
-                                                                           tableLayout_.get(), constants)};
+                                                                           tableLayout_.get(), aerialConstants)};
     }
     if (!cameraTransmittanceBuild_.get())
       cameraTransmittanceBuild_ = {context_, vk::createComputePipelineWithLayout(

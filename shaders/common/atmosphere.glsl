@@ -99,27 +99,22 @@ vec3 extinctionAt(IN(AtmosphereParams) a, real h) {
          vec3(real(a.ozone.x), real(a.ozone.y), real(a.ozone.z)) * ozoneDensity;
 }
 
-// Optical depth from altitude h along mu to the top of the atmosphere, by the midpoint rule
-// with `steps` equal steps.
-vec3 opticalDepthToTop(IN(AtmosphereParams) a, real h, real mu, uint steps) {
-  real R = real(a.radii.x);
-  real dt = distanceToTop(a, h, mu) / real(steps);
-  vec3 sum = vec3(real(0.0f), real(0.0f), real(0.0f));
-  for (uint i = 0u; i < steps; ++i) {
-    real t = (real(i) + real(0.5f)) * dt;
-    sum = sum + extinctionAt(a, altitudeAlong(R, h, mu, t));
-  }
-  return sum * dt;
-}
-
 // Optical depth from altitude h along mu over the first t metres of the ray, by the midpoint rule
 // with `steps` equal steps (past the ground the air keeps its density there: extinctionAt).
 vec3 opticalDepthAlong(IN(AtmosphereParams) a, real h, real mu, real t, uint steps) {
   real R = real(a.radii.x);
   real dt = t / real(steps);
   vec3 sum = vec3(real(0.0f), real(0.0f), real(0.0f));
-  for (uint i = 0u; i < steps; ++i) sum = sum + extinctionAt(a, altitudeAlong(R, h, mu, (real(i) + real(0.5f)) * dt));
+  for (uint i = 0u; i < steps; ++i) {
+    real ti = (real(i) + real(0.5f)) * dt;
+    sum = sum + extinctionAt(a, altitudeAlong(R, h, mu, ti));
+  }
   return sum * dt;
+}
+
+// Optical depth from altitude h along mu to the top of the atmosphere, likewise.
+vec3 opticalDepthToTop(IN(AtmosphereParams) a, real h, real mu, uint steps) {
+  return opticalDepthAlong(a, h, mu, distanceToTop(a, h, mu), steps);
 }
 
 // The camera's transmittance table's parameterisation (shared/sky_params.h,

@@ -110,8 +110,8 @@ GPU_CONST float kSkyViewGroundShareTo = 0.98f;
 GPU_CONST float kSkyViewGroundHeightFrom = 100.0f;
 GPU_CONST float kSkyViewGroundHeightTo = 400.0f;
 // The camera's transmittance table, rebuilt every frame from inside the air before the compose
-// (sky_camera_transmittance.comp; sky_aerial.glsl, cameraTransmittanceUv, has its mapping): the
-// air's optical depth from the camera to distance t along a ray of zenith cosine mu, x by
+// (sky_camera_transmittance.comp; common/atmosphere.glsl, cameraTransmittanceUnit, has its
+// mapping): the air's optical depth from the camera to distance t along a ray of zenith cosine mu, x by
 // distance (t out to SkyUniforms::aerial.y, gathered toward the camera), y by mu (gathered toward
 // the ground sphere's horizon). One read gives a pixel's transmittance to what it shows. Each row
 // is marched by one invocation, kCameraTransmittanceSteps midpoint steps between neighbouring
