@@ -70,6 +70,14 @@ vec3 cloudLight(float h, float d, float muS, float phase, vec3 sunLight, vec3 sk
                     skyLight / kAtmospherePi * (0.1f + 0.9f * diffuseSky));
 }
 
+// The share of the sun's direct light that a column of cover density d lets through, crossed at
+// the sun's zenith cosine muS (> 0): at the sun's slant, capped by the cloud's width.
+float columnSunTransmittance(float d, float muS) {
+  float thickness = CLOUD_LAYER.y - CLOUD_LAYER.x;
+  float slant = min(d * thickness / muS, CLOUD_LAYER.w * thickness);
+  return exp(-CLOUD_LAYER.z * d * slant);
+}
+
 // The share of the sun's direct light that reaches a surface point below the layer: the column
 // where the ray toward the sun crosses the middle of the layer, crossed at the sun's slant (the
 // cloud's width caps it). `fromCentre`: the point (local frame, from the planet's centre) at
@@ -80,9 +88,7 @@ float cloudSunTransmittance(vec3 fromCentre, float R, float hSurface, vec3 sun, 
   if (!(hSurface < cloudH && muS > 0.0f)) return 1.0f;
   float toLayer = raySphere(R, hSurface, muS, cloudH).x;
   float d = coverDensity(fromCentre + sun * toLayer, coverLod(footprintM, R + cloudH));
-  float thickness = CLOUD_LAYER.y - CLOUD_LAYER.x;
-  float slant = min(d * thickness / muS, CLOUD_LAYER.w * thickness);
-  return exp(-CLOUD_LAYER.z * d * slant);
+  return columnSunTransmittance(d, muS);
 }
 
 // The clouds' shadow on the ground as a factor of all of its light (the compose applies it to

@@ -35,9 +35,9 @@ layout(constant_id = 3) const bool kSpecAirglow = true;
 // kSkyTileAerialClear and the last two's near kinds), as a specialization constant: each class's
 // tiles are dispatched by a pipeline of their own (SkyPass::recordCompose, from the lists of
 // sky_classify.comp and sky_cloud_classify.comp), so that a tile of sky runs no
-// aerial-perspective code, a tile of ground no sky-view code, a tile of ground clear of the
-// clouds no read of their light, and a near one neither the sky-view table's light nor the
-// volume's transmittance: lavapipe runs both sides of a branch for every pixel.
+// aerial-perspective code, a tile of ground clear of the clouds none of the cloud pass's samples
+// (its shadow from the clouds' shadow table), and a near one neither the sky-view table's light
+// nor the volume's transmittance: lavapipe runs both sides of a branch for every pixel.
 layout(constant_id = 2) const uint kSpecTileClass = kSkyTileMixed;
 // Tiles of ground clear of the clouds; tiles of ground whose rays all end well short of the
 // ground sphere (shared/sky_params.h, kSkyTileNear).
@@ -63,17 +63,13 @@ const float kDistanceTolerance = 0.1f;
 // takes its clouds from the sky samples and the mountain none from them (the cloud pass ends a
 // sample's ray at the nearer surface of its block, so each side has samples of its own). The
 // shadow counts only samples of drawn surfaces at a distance like this pixel's.
-// With `clear` (a tile of kSkyTileAerialClear: every ray of its pixels and of the samples they read
-// ends before the layer) the samples' light is known without reading it, (0, 0, 0, 1), and every
-// path through the layer is 0: the weights are the bilinear ones, as the general code finds them.
-void upsampledClouds(ivec2 pixel, ViewRay ray, bool clear, out vec3 composite, out float transmittance,
-                     out float shadow) {
+void upsampledClouds(ivec2 pixel, ViewRay ray, out vec3 composite, out float transmittance, out float shadow) {
   float scale = sky.cloudShape.w;
   ivec2 last = (ivec2(sky.extent.xy) + int(scale) - 1) / int(scale) - 1;
   vec2 q = (vec2(pixel) + 0.5f) / scale - 0.5f;  // sample i is centred on pixel edge scale · (i + 1/2)
   vec2 base = floor(q);
   vec2 f = q - base;
-  float pathHere = clear ? 0.0f : layerPathBefore(ray.dir, ray.tEnd);
+  float pathHere = layerPathBefore(ray.dir, ray.tEnd);
   vec4 light[4];
   vec4 end[4];
   float bilinear[4], pathMismatch[4], distanceMismatch[4];
@@ -81,11 +77,11 @@ void upsampledClouds(ivec2 pixel, ViewRay ray, bool clear, out vec3 composite, o
   for (int k = 0; k < 4; ++k) {
     ivec2 offset = ivec2(k & 1, k >> 1);
     ivec2 cell = clamp(ivec2(base) + offset, ivec2(0), last);
-    light[k] = clear ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : imageLoad(cloudSampleLight, cell);
+    light[k] = imageLoad(cloudSampleLight, cell);
     light[k].rgb *= 1.0f / kSkyHalfLightScale;
     end[k] = imageLoad(cloudSampleEnd, cell);  // x: distance to the drawn surface, y: layer path, z: shadow
     bilinear[k] = (offset.x == 1 ? f.x : 1.0f - f.x) * (offset.y == 1 ? f.y : 1.0f - f.y);
-    float path = clear ? 0.0f : end[k].y;
+    float path = end[k].y;
     float x = abs(path - pathHere) / (kPathTolerance * max(path, pathHere) + kPathSlackM);
     pathMismatch[k] = min(x * x, 1e4f);
     bestPath = min(bestPath, pathMismatch[k]);
@@ -206,9 +202,12 @@ void main() {
   cloudComposite = vec3(0.0f);
   cloudTransmittance = 1.0f;
   cloudShadowFactor = 1.0f;
-  if (kSpecClouds)
-    upsampledClouds(pixel, ray, kTileClear, cloudComposite, cloudTransmittance,
-                    cloudShadowFactor);
+  // A tile clear of the clouds has none in front of it (composite 0, transmittance 1) and takes
+  // its shadow at each pixel from the clouds' shadow table.
+  if (kSpecClouds && kTileClear)
+    cloudShadowFactor = cloudShadowFromTable(ray);
+  else if (kSpecClouds)
+    upsampledClouds(pixel, ray, cloudComposite, cloudTransmittance, cloudShadowFactor);
   if (geometry) surface *= cloudShadowOnDrawn(cloudShadowFactor, stored.a);
   if (a.radii.w > 0.5f) {
     vec2 uv = (vec2(pixel) + 0.5f) / sky.extent.xy;

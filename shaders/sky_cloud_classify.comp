@@ -24,6 +24,9 @@
 // clouds or not (kSkyTileAerialClear, kSkyTileAerial; sky_classify.comp leaves them here): a
 // clear tile's pipeline reads no cloud light and no path through the layer, only the shadow.
 // Either may also be near (composeTileNear, from the tile's own rays: kSkyTileNear).
+// A clear cloud tile whose samples only clear compose tiles read (which take the clouds' shadow
+// from the shadow table instead: sky_cloud_shadow.comp) is listed nowhere, and not run: from a
+// few metres up about half of the cloud pass's tiles (onlyClearTilesRead).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
@@ -52,6 +55,34 @@ bool raysEndBeforeLayer(vec2 lo, vec2 hi, float farthest) {
   return tileFarthestEnd(rays, farthest) < kDistanceMargin * nearestExit;
 }
 
+// Whether every compose tile that reads a sample of cloud tile `tile` is listed as clear of the
+// clouds below (a sufficient test). The compose's pixel p reads the samples floor((p + 1/2) / scale
+// − 1/2) and the next, so this tile's samples are read by pixels within `scale` of its own:
+// compose tiles `first` to `final`. Each of those is clear when its neighbourhood's rays (it and the
+// tiles around it) end before the layer, all of its pixels show ground, and, where the depth may
+// hold surfaces past the air, its rays end inside the air. The bounds of both tests grow with the
+// rectangle and with the depth's range, so one test over all the neighbourhoods together (and
+// one over the tiles together) implies each tile's.
+bool onlyClearTilesRead(uvec2 tile, uint scale) {
+  if ((push.classes & (1u << kSkyTileAerialClear)) == 0u) return false;
+  ivec2 firstPixel = ivec2(tile * kSkyWorkgroupSize * scale) - int(scale);
+  ivec2 lastPixel = ivec2((tile + 1u) * kSkyWorkgroupSize * scale) + int(scale) - 1;
+  uvec2 last = push.tiles - 1u;
+  uvec2 first = uvec2(max(firstPixel / int(kSkyWorkgroupSize), 0));
+  uvec2 final = min(uvec2(lastPixel) / kSkyWorkgroupSize, last);
+  uvec2 near = max(first, 1u) - 1u, far = min(final + 1u, last);
+  float farthest = farthestDepthOf(near, far);
+  if (!(farthest > 0.0f)) return false;
+  if (push.checkAirExit != 0u) {
+    vec2 lo = vec2(first * kSkyWorkgroupSize);
+    vec2 hi = min(vec2((final + 1u) * kSkyWorkgroupSize), sky.extent.xy);
+    if (!composeTileInsideAir(tileRays(lo + 0.5f, hi - 0.5f), farthestDepthOf(first, final))) return false;
+  }
+  vec2 lo = vec2(near * kSkyWorkgroupSize);
+  vec2 hi = min(vec2((far + 1u) * kSkyWorkgroupSize), sky.extent.xy);
+  return raysEndBeforeLayer(lo, hi, farthest);
+}
+
 void main() {
   uvec2 tile = gl_GlobalInvocationID.xy;
   if (tile.x >= push.cloudTiles.x || tile.y >= push.cloudTiles.y) return;
@@ -69,7 +100,9 @@ void main() {
     vec2 hi = lo + float((kSkyWorkgroupSize - 1u) * scale);
     clear = raysEndBeforeLayer(lo, hi, farthestDepthOf(from, to));
   }
-  appendTile(clear ? kSkyCloudTileClear : kSkyCloudTileMarch, tile);
+  // A clear tile whose samples no compose tile but those clear of the clouds reads is not run at
+  // all: those take their shadow from the clouds' shadow table and read no sample.
+  if (!(clear && onlyClearTilesRead(tile, scale))) appendTile(clear ? kSkyCloudTileClear : kSkyCloudTileMarch, tile);
   // The ground's compose tiles under this one (sky_classify.comp left them to this pass): clear
   // when every ray of their pixels and of the cloud samples they read ends before the layer. A
   // pixel reads the four samples around its centre, whose blocks of pixels lie within 1.5 samples

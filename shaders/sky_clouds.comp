@@ -13,7 +13,9 @@
 // and the ray's end, its path through the layer before it and the shadow there (cloudSampleEnd).
 // It runs the tiles of sky_cloud_classify.comp's lists, each list with a pipeline of its own:
 // where no ray of a tile can reach the layer, the pipeline has no march (the march would find
-// nothing there and write the same).
+// nothing there and write the same) and reads the shadow from the clouds' shadow table
+// (sky_cloud_shadow.comp), not the cover; such a tile that only the compose's tiles clear of the
+// clouds read is not run at all (they read no sample).
 #extension GL_GOOGLE_include_directive : require
 
 #include "sky_compose.glsl"
@@ -96,5 +98,7 @@ void main() {
   imageStore(cloudSampleLight, cell, vec4(composite * kSkyHalfLightScale, transmittance));
   // (A ray that ends before the layer has no path through it before its end.)
   float path = kSpecCloudTileClass == kSkyCloudTileMarch ? layerPathBefore(ray.dir, ray.tEnd) : 0.0f;
-  imageStore(cloudSampleEnd, cell, vec4(ray.tGeometry, path, cloudShadow(ray), 0.0f));
+  // (The clear tiles' surfaces lie where the clouds' shadow table serves: under the layer's base.)
+  float shadow = kSpecCloudTileClass == kSkyCloudTileMarch ? cloudShadow(ray) : cloudShadowFromTable(ray);
+  imageStore(cloudSampleEnd, cell, vec4(ray.tGeometry, path, shadow, 0.0f));
 }

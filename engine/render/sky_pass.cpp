@@ -14,6 +14,7 @@
 #include "spv/sky_camera_transmittance.comp.h"
 #include "spv/sky_classify.comp.h"
 #include "spv/sky_cloud_classify.comp.h"
+#include "spv/sky_cloud_shadow.comp.h"
 #include "spv/sky_clouds.comp.h"
 #include "spv/sky_reference.comp.h"
 #include "spv/sky_view.comp.h"
@@ -43,8 +44,10 @@ constexpr VkDescriptorType kComposeBindings[] = {
     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // cloud end (likewise)
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,  // the tiles by class (the classify pass writes them, the compose reads them)
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the camera's transmittance
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,  // the clouds' shadow table (the compose and the cloud pass read it)
+    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,           // the same (its build writes it)
 };
-static_assert(std::size(kComposeBindings) == gpu::kSkyBindingCameraTransmittance + 1,
+static_assert(std::size(kComposeBindings) == gpu::kSkyBindingCloudShadowTarget + 1,
               "one descriptor type per compose binding");
 
 // The per-frame table builds (sky_view.comp, aerial_perspective.comp, sky_camera_transmittance.comp):
@@ -70,6 +73,8 @@ static_assert(gpu::kCameraTransmittanceDirections % gpu::kCameraTransmittanceWor
 // light scaled by gpu::kSkyHalfLightScale (deep twilight's is below a half float's normals).
 constexpr VkFormat kCloudLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kCloudEndFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// The clouds' shadow table: one density per texel, written, then filtered.
+constexpr VkFormat kCloudShadowFormat = VK_FORMAT_R32_SFLOAT;
 
 // The sky-view table holds radiance in float (192 × 108 texels: the format's cost does not show);
 // the aerial volume does with half floats, its light scaled by gpu::kSkyHalfLightScale.
@@ -171,6 +176,10 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                             VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
                                 VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
                             "the sky-view table (written, then filtered)");
+  vk::requireFormatFeatures(context, kCloudShadowFormat,
+                            VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT,
+                            "the clouds' shadow table (written, then filtered)");
   for (vk::Owned<vk::Buffer>& uniforms : uniforms_)
     uniforms = {context, vk::createBuffer(context, sizeof(gpu::SkyUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                           vk::MemoryUsage::Upload)};
@@ -195,6 +204,8 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
   cameraTransmittance_ = {
       context, vk::createImage2D(context, {gpu::kCameraTransmittanceDistances, gpu::kCameraTransmittanceDirections},
                                  kTableFormat, kTableUsage)};
+  cloudShadow_ = {context, vk::createImage2D(context, {gpu::kCloudShadowTableSize, gpu::kCloudShadowTableSize},
+                                             kCloudShadowFormat, kTableUsage)};
   tableSetLayout_ = {context, vk::createSetLayout(context, kTableBindings, VK_SHADER_STAGE_COMPUTE_BIT)};
   tablePool_ = {context, vk::createDescriptorPool(context, kTableBindings, vk::kFramesInFlight)};
   tableLayout_ = {context, vk::createPipelineLayout(context, tableSetLayout_.get(), 0, 0)};
@@ -219,6 +230,10 @@ SkyPass::SkyPass(vk::Context& context, const PlanetDescription& planet, const Sk
                              kGeneral, tables.sampler());
     vk::writeImageDescriptor(context, set, gpu::kSkyBindingCameraTransmittance, kSampled, cameraTransmittance_->view,
                              kGeneral, tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingCloudShadowTable, kSampled, cloudShadow_->view, kGeneral,
+                             tables.sampler());
+    vk::writeImageDescriptor(context, set, gpu::kSkyBindingCloudShadowTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                             cloudShadow_->view, kGeneral);
 
     VkDescriptorSet tableSet = tableSets_[slot] = vk::allocateSet(context, tablePool_.get(), tableSetLayout_.get());
     vk::writeBufferDescriptor(context, tableSet, gpu::kSkyTableBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
@@ -288,6 +303,8 @@ void SkyPass::makePipelines(bool clouds) {
         cloudsPass_[list] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_sky_clouds_comp,
                                                                            layout_.get(), cloudConstants)};
       }
+      cloudShadowBuild_ = {context_,
+                           vk::createComputePipelineWithLayout(context_, kSpv_sky_cloud_shadow_comp, layout_.get())};
     }
   }
   if (settings_.mode == SkyMode::Reference && !referenceCompose_[clouds].get()) {
@@ -414,6 +431,16 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // the deepest terrain when that is below it (basins seen past the radius sphere's horizon).
   const double groundSphere = planet_.hasOcean ? 0.0 : std::min(lowest, 0.0);
   u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, float(groundSphere), 0.0f);
+  if (clearCloudTiles_) {
+    // The clouds' shadow table's square: centred where the sun's ray from the camera crosses the
+    // layer's middle (on the sphere's horizon when the sun is below the camera's).
+    const double r = planet_.radiusM + view.altitudeM;
+    const double rMiddle = planet_.radiusM + 0.5 * (planet_.clouds.bottomM + planet_.clouds.topM);
+    const double mu = std::max(view.sunLocal.z, 0.0);
+    const double toLayer = -r * mu + std::sqrt(std::max(r * r * mu * mu + rMiddle * rMiddle - r * r, 0.0));
+    u.cloudShadowTable = glm::vec4(float(view.sunLocal.x * toLayer), float(view.sunLocal.y * toLayer),
+                                   float(cloudShadowHalfSideM(view, lowest)), 0.0f);
+  }
   // The aerial-perspective slices (shaders/sky_aerial.glsl): from inside the air, out to the
   // farthest distance at which the volume is read. That is where a ray past the ground sphere's
   // horizon leaves the air; but when nothing is drawn in the air but this body's own ground, sea
@@ -459,6 +486,32 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
 }
 
+double SkyPass::cloudShadowHalfSideM(const SkyView& view, double lowestM) const {
+  // The surfaces a ray that ends before the layer shows (the camera below its base) lie inside
+  // the ball under the base and no lower than the lowest surface, on a straight ray from the
+  // camera that stays above that: at most the horizon angles of the camera and of the base over
+  // the lowest sphere from the nadir. The sun's ray from such a surface, at zenith angle θ there
+  // (at most the camera's plus that angle, and below a right angle where it is lit), crosses the
+  // layer's middle θ − asin(r sin θ / r_mid) further on (the triangle of the centre, the surface
+  // at radius r and the crossing), most from the lowest surface. The table's square holds the
+  // sphere's points out to the sum of both angles from the nadir (so also from its centre, the
+  // camera's own crossing: the two crossings' offsets lie along the sun's direction, each at most
+  // the largest), and one edge texel more (their centres lie half a texel in).
+  constexpr double kRightAngle = 0.5 * std::numbers::pi;
+  const double radius = planet_.radiusM;
+  const double rLow = radius + std::min(lowestM, view.altitudeM);
+  const double rBase = radius + planet_.clouds.bottomM;
+  const double rMiddle = radius + 0.5 * (planet_.clouds.bottomM + planet_.clouds.topM);
+  const double reach =
+      std::acos(std::min(rLow / (radius + view.altitudeM), 1.0)) + std::acos(std::min(rLow / rBase, 1.0));
+  const double sunZenith = std::min(std::acos(std::clamp(view.sunLocal.z, -1.0, 1.0)) + reach, kRightAngle);
+  const double alongSun = sunZenith - std::asin(rLow * std::sin(sunZenith) / rMiddle);
+  const double halfSide = rMiddle * std::sin(std::min(reach + alongSun, kRightAngle));
+  // (The last texel's centre lies at u = 1 − 1 / size, x = c + s (1 − 1 / size)².)
+  const double lastCentre = 1.0 - 1.0 / double(gpu::kCloudShadowTableSize);
+  return halfSide / (lastCentre * lastCentre) * 1.001;
+}
+
 void SkyPass::recordSkyView(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   const VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
   // Its readers: the sea's fragments and the compose.
@@ -491,7 +544,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (!cloudImagesInitialised_) {
     // New images start undefined and stay in GENERAL, in every mode: the compose's descriptor set
     // names them (a compose without clouds still binds them, its reads specialized away).
-    for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_})
+    for (vk::Owned<vk::Image>* image : {&cloudLight_, &cloudEnd_, &cloudShadow_})
       vk::transitionImage(cmd, **image, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0, compute,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     cloudImagesInitialised_ = true;
@@ -559,11 +612,18 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudClassify_.get());
       vkCmdDispatch(cmd, (cloudGroupsX + group - 1) / group, (cloudGroupsY + group - 1) / group, 1);
     }
-    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     // (The classify's layout has a push constant, so the set is bound again for the passes'.)
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &sets_[slot_], 0, nullptr);
+    if (clearCloudTiles_) {
+      // The clouds' shadow table, for the tiles clear of the layer (the barrier below covers it).
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cloudShadowBuild_.get());
+      const uint32_t shadowGroups = (gpu::kCloudShadowTableSize + group - 1) / group;
+      vkCmdDispatch(cmd, shadowGroups, shadowGroups, 1);
+    }
+    vk::memoryBarrier(cmd, compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      compute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
+                          VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     if (clouds) {
       // Only the samples the compose reads (prepare); none when nothing shows the air.
       for (uint32_t list = 0; list < kCloudTileClasses; ++list) {

@@ -216,6 +216,9 @@ class SkyPass {
   // the compose pipelines leave the cloud code out (sky.comp's kSpecClouds: lavapipe would run
   // it for every pixel) and the cloud pass is not dispatched.
   bool cloudsDrawn() const;
+  // Half the side of the clouds' shadow table's square (SkyUniforms::camera.z) for a camera below
+  // the cloud layer's base, lowestM the lowest surface a ray can end on (m above the radius).
+  double cloudShadowHalfSideM(const SkyView& view, double lowestM) const;
 
   vk::Context& context_;
   uint32_t specialization_[2][2] = {{1u, 0u}, {1u, 1u}};  // [clouds]: sky.comp's kSpecEclipses, kSpecClouds
@@ -245,6 +248,7 @@ class SkyPass {
   // The cloud pass's tile classes: lists kSkyCloudTileMarch .. kSkyTileLists − 1.
   static constexpr uint32_t kCloudTileClasses = gpu::kSkyTileLists - gpu::kSkyCloudTileMarch;
   vk::Owned<VkPipeline> cloudsPass_[kCloudTileClasses];  // sky_clouds.comp, [0] the marched tiles, [1] the clear
+  vk::Owned<VkPipeline> cloudShadowBuild_;               // sky_cloud_shadow.comp (tables mode, clouds)
   VkDescriptorSet sets_[vk::kFramesInFlight] = {};  // from pool_, each reads its slot's uniforms
   // The per-frame tables, kept in GENERAL (written by the builds, sampled by the compose).
   vk::Owned<vk::Image> skyView_;
@@ -273,7 +277,10 @@ class SkyPass {
   // (width / scale) × (height / scale) of them, cloudScale_), in GENERAL.
   vk::Owned<vk::Image> cloudLight_;
   vk::Owned<vk::Image> cloudEnd_;
-  bool cloudImagesInitialised_ = false;
+  // The clouds' shadow table (shaders/sky_cloud_shadow.comp), built from below the layer's base
+  // (clearCloudTiles_), in GENERAL.
+  vk::Owned<vk::Image> cloudShadow_;
+  bool cloudImagesInitialised_ = false;  // the three above left UNDEFINED for GENERAL
   // The compose's and the cloud pass's tiles by class (shaders/shared/sky_params.h,
   // kSkyBindingTiles): the indirect dispatches, then a list of tileCapacity_ (the image's tiles)
   // per class, then the compose tiles' farthest depths.

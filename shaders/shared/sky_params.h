@@ -46,6 +46,15 @@ GPU_CONST uint kSkyBindingCloudEnd = 10u;   // image2D rgba32f: x the distance t
 GPU_CONST uint kSkyBindingTiles = 11u;
 // sampler2D: the camera's transmittance table (kCameraTransmittanceDistances below), from inside the air.
 GPU_CONST uint kSkyBindingCameraTransmittance = 12u;
+// The clouds' shadow table (sky_cloud_shadow.comp writes it each frame from below the layer's base,
+// before the cloud pass; the ground's tiles clear of the clouds read it): the cover's density on
+// the sphere through the layer's middle around the camera, kCloudShadowTableSize² texels of r32f
+// over a square of the local frame's x and y (SkyUniforms::cloudShadowTable), gathered toward its
+// centre (sky_compose.glsl, cloudShadowTableUv). Bound twice: sampled (13) and as the build's
+// target (14).
+GPU_CONST uint kSkyBindingCloudShadowTable = 13u;
+GPU_CONST uint kSkyBindingCloudShadowTarget = 14u;
+GPU_CONST uint kCloudShadowTableSize = 128u;
 GPU_CONST uint kSkyTileMixed = 0u;   // pixels of both kinds, or of geometry past the air
 GPU_CONST uint kSkyTileSky = 1u;     // no pixel shows geometry: the sky-view table's
 GPU_CONST uint kSkyTileAerial = 2u;  // every pixel shows geometry inside the air: the aerial volume's
@@ -208,13 +217,15 @@ struct SkyUniforms {
                  // aerialPerspective); w: its cosine (sky_aerial.glsl, cameraTransmittanceUv)
   vec4 region;   // the passes' dispatches cover only where the air or the sun can show (SkyPass::prepare,
                  // skyRegion): x, y: the compose's first pixel; z, w: the cloud pass's first sample
+  vec4 cloudShadowTable;  // the clouds' shadow table's square (kSkyBindingCloudShadowTable): xy its centre (local
+                          // x and y, m), z half its side (m), w: unused
   // Sky irradiance on a horizontal surface for sun zenith cosines −0.2 .. 1 (atmosphere_model.h).
   vec4 skyIrradiance[16];
   // The other bodies of a scene, which hide the sun from this one's air (common/eclipse.glsl).
   EclipseParams eclipse;
   AirglowParams airglow;
 };
-GPU_ASSERT_SIZE(SkyUniforms, 672 + 272 + 32)
+GPU_ASSERT_SIZE(SkyUniforms, 688 + 272 + 32)
 
 // Multiple-scattering table (Hillaire 2020, §5.5; shaders/atmosphere_multiscatter.comp): u from
 // the sun's zenith cosine, v from the altitude; RGBA32F, rgb = Ψ_ms (radiance per steradian per
