@@ -2,7 +2,9 @@
 // The aerial-perspective volume (Hillaire 2020, §5.4), rebuilt every frame before the compose
 // pass: for each of kAerialSize² columns across the screen, the light the air scatters toward
 // the camera (single and multiple scattering) and the transmittance from the camera to the far
-// end of each of the column's kAerialSize slices, the latter as the optical depth; and the light
+// end of each of the column's kAerialSize slices, the latter as the optical depth (from above the
+// air only: from inside, the compose and the cloud pass read the camera's transmittance table,
+// sky_camera_transmittance.comp); and the light
 // by the column's opacity rather than its distance (sky_compose.glsl, aerialPerspective, says
 // why). One invocation marches a whole column, kSpecStepsPerSlice steps per slice
 // (common/atmosphere.glsl, scatteringStep), and stops where the ray meets the ground sphere:
@@ -33,6 +35,11 @@ layout(constant_id = 0) const bool kSpecEclipses = true;
 // air), as a specialization constant: with a count known when the pipeline is built the steps
 // are unrolled, where a count read from the uniforms cost lavapipe a loop (0.3 ms a build).
 layout(constant_id = 1) const uint kSpecStepsPerSlice = kAerialStepsPerSlice;
+// Whether the camera is above the air (SkyUniforms::aerial.x), as a specialization constant: the
+// two sides fill the volume differently (below), and from inside the air no pass reads the
+// transmittance volume (the camera's transmittance table serves: sky_compose.glsl,
+// aerialPerspective), whose stores were a fifth of the build on lavapipe.
+layout(constant_id = 2) const bool kSpecFromAbove = false;
 #include "common/eclipse.glsl"
 vec3 marchStart;  // local frame, from the camera
 vec3 marchDirection;
@@ -56,7 +63,7 @@ void main() {
   // pixels at the disc's edge, which the filter blends with this column's, nearly have. Left
   // empty it pulled their light toward none, and the transmittance toward 1.
   vec2 stretch = atmosphereStretch(a, h, dir.z, hGround);
-  if (aerialFromAbove() && !(stretch.y > stretch.x)) {
+  if (kSpecFromAbove && !(stretch.y > stretch.x)) {
     float ratio = (R + hGround) / (R + h);
     float muLimb = -sqrt(max(1.0f - ratio * ratio, 0.0f)) - 1.0e-4f;
     float across = length(dir.xy);
@@ -90,9 +97,9 @@ void main() {
   // From above the air, where the columns' rays differ most (at the limb some cross the thick air
   // low down, their neighbours only the thin air above), it holds the light at the slices' ends,
   // as the depth volume does, and the compose reads both by distance.
-  bool byOpacity = !aerialFromAbove();
+  const bool byOpacity = !kSpecFromAbove;
   imageStore(aerialLight, ivec3(column, 0), aerialEncodeLight(vec3(0.0f)));
-  imageStore(aerialTransmittance, ivec3(column, 0), vec4(0.0f));
+  if (kSpecFromAbove) imageStore(aerialTransmittance, ivec3(column, 0), vec4(0.0f));
   uint level = 1u;
   vec3 lastTotal = vec3(0.0f);
   float lastOpacity = 0.0f;
@@ -114,8 +121,10 @@ void main() {
       }
       done = target;
     }
-    imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(-log(max(transmittance, vec3(1.0e-30f))), 0.0f));
-    if (!byOpacity) imageStore(aerialLight, ivec3(column, k + 1u), aerialEncodeLight(total));
+    if (kSpecFromAbove) {
+      imageStore(aerialTransmittance, ivec3(column, k + 1u), vec4(-log(max(transmittance, vec3(1.0e-30f))), 0.0f));
+      imageStore(aerialLight, ivec3(column, k + 1u), aerialEncodeLight(total));
+    }
   }
   for (; byOpacity && level <= kAerialSize; ++level)
     imageStore(aerialLight, ivec3(column, level), aerialEncodeLight(total));

@@ -274,9 +274,9 @@ void SkyPass::makePipelines(bool clouds) {
   if (settings_.mode == SkyMode::Tables) {
     for (uint32_t above = 0; above < 2; ++above) {
       if (aerialBuild_[above].get()) continue;
-      // Specialized on the eclipses (constant 0, as the compose's) and on its steps per slice.
+      // Specialized on the eclipses (constant 0, as the compose's), its steps per slice and the side.
       const uint32_t aerialConstants[] = {specialization_[0][0],
-                                          above ? gpu::kAerialStepsPerSliceAbove : gpu::kAerialStepsPerSlice};
+                                          above ? gpu::kAerialStepsPerSliceAbove : gpu::kAerialStepsPerSlice, above};
       aerialBuild_[above] = {context_, vk::createComputePipelineWithLayout(context_, kSpv_aerial_perspective_comp,
                                                                            tableLayout_.get(), aerialConstants)};
     }

@@ -259,7 +259,7 @@ class SkyPass {
   vk::Owned<VkDescriptorPool> tablePool_;
   vk::Owned<VkPipelineLayout> tableLayout_;
   vk::Owned<VkPipeline> skyViewBuild_;
-  vk::Owned<VkPipeline> aerialBuild_[2];                 // [from above the air]: its steps per slice differ
+  vk::Owned<VkPipeline> aerialBuild_[2];  // [from above the air]: its steps per slice and its stores differ
   vk::Owned<VkPipeline> cameraTransmittanceBuild_;       // sky_camera_transmittance.comp (tables mode)
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
   bool tablesInitialised_ = false;  // the aerial volume and the camera's table left UNDEFINED for GENERAL

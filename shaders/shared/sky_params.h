@@ -94,13 +94,13 @@ GPU_CONST uint kStepsTowardStart = 1u;
 GPU_CONST uint kStepsTowardEnd = 2u;
 // Aerial-perspective volume: kAerialSize² columns over the screen, each with kAerialSize + 1
 // slices along its ray in two rgba16f 3D images: the air's optical depth τ = −ln T from the camera
-// to each slice's far end (the first the camera's, 0), and the light scattered toward the camera
-// where the column's opacity 1 − T (green) reaches j / kAerialSize (from above the air: at the
-// slices' ends; sky_compose.glsl, aerialPerspective, says why). The light is stored times
-// kSkyHalfLightScale, as the cloud light is; alpha holds log2 of its luminance plus
-// kAerialLogFloor (sky_aerial.glsl, aerialDecodeLight, says why): 2⁻⁴⁰ of the sun's irradiance,
-// 2⁸ below the darkest light auto exposure measures (kExposureMinLog2), so that the floor never
-// shows.
+// to each slice's far end (the first the camera's, 0; built from above the air only), and the
+// light scattered toward the camera where the column's opacity 1 − T (green) reaches
+// j / kAerialSize (from above the air: at the slices' ends; sky_compose.glsl, aerialPerspective,
+// says why). The light is stored times kSkyHalfLightScale, as the cloud light is; alpha holds
+// log2 of its luminance plus kAerialLogFloor (sky_aerial.glsl, aerialDecodeLight, says why): 2⁻⁴⁰
+// of the sun's irradiance, 2⁸ below the darkest light auto exposure measures (kExposureMinLog2),
+// so that the floor never shows.
 GPU_CONST uint kAerialSize = 32u;
 GPU_CONST float kAerialLogFloor = 9.094947e-13f;  // 2^-40
 GPU_CONST float kAerialBlendExcess = 2.0f;
