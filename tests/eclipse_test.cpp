@@ -474,8 +474,12 @@ TEST_F(EclipseGpu, ASceneComposesTheGroundWithoutTheSkyViewTableOnlyWhereItsRays
         EXPECT_EQ(SkyPass::groundTiles(counts), 0u) << scene.bodies[body].name;
     }
     const auto terraCounts = classes.sky(terra).readTileCounts();
-    if (view.terraSky) EXPECT_GT(terraCounts[gpu::kSkyTileSky], 0u);
-    if (view.terraMixed) EXPECT_GT(terraCounts[gpu::kSkyTileMixed], 0u);
+    if (view.terraSky) {
+      EXPECT_GT(terraCounts[gpu::kSkyTileSky], 0u);
+    }
+    if (view.terraMixed) {
+      EXPECT_GT(terraCounts[gpu::kSkyTileMixed], 0u);
+    }
     if (a.image.pixels != b.image.pixels) {
       const std::string name = testOutputDir().string() + "/scene_tiles_" + std::to_string(&view - views);
       writePng(name + ".classes.png", a.image);

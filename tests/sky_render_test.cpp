@@ -755,7 +755,9 @@ TEST_F(SkyRender, TilesOfOneKindAreComposedWithoutTheOtherSidesCode) {
       EXPECT_EQ(groundClear, 0u);
     }
     // From above the air the ground takes the volume's transmittance.
-    if (view.camera.altitudeM >= planet.atmosphere.heightM) EXPECT_EQ(near, 0u);
+    if (view.camera.altitudeM >= planet.atmosphere.heightM) {
+      EXPECT_EQ(near, 0u);
+    }
     if (a.pixels != b.pixels) {
       const std::string name = testOutputDir().string() + "/sky_tiles_" + std::to_string(&view - views);
       writePng(name + ".classes.png", a);
