@@ -78,17 +78,28 @@ float columnSunTransmittance(float d, float muS) {
   return exp(-CLOUD_LAYER.z * d * slant);
 }
 
-// The share of the sun's direct light that reaches a surface point below the layer: the column
-// where the ray toward the sun crosses the middle of the layer, crossed at the sun's slant (the
-// cloud's width caps it). `fromCentre`: the point (local frame, from the planet's centre) at
-// altitude hSurface (m above the radius R), muS: the sun's zenith cosine there, footprintM: the
-// area the result stands for (the cover's mip level). 1 above the layer's middle or at night.
-float cloudSunTransmittance(vec3 fromCentre, float R, float hSurface, vec3 sun, float muS, float footprintM) {
+// Where the ray toward the sun from a surface point crosses the sphere through the layer's middle
+// (`crossing`, local frame, from the planet's centre), for a point below that sphere in
+// sunlight; false above it or at night, where no cloud shades the point. `fromCentre`: the point
+// (local frame, from the planet's centre) at altitude hSurface (m above the radius R), muS: the
+// sun's zenith cosine there.
+bool cloudLayerCrossing(vec3 fromCentre, float R, float hSurface, vec3 sun, float muS, out vec3 crossing) {
   float cloudH = 0.5f * (CLOUD_LAYER.x + CLOUD_LAYER.y);
-  if (!(hSurface < cloudH && muS > 0.0f)) return 1.0f;
-  float toLayer = raySphere(R, hSurface, muS, cloudH).x;
-  float d = coverDensity(fromCentre + sun * toLayer, coverLod(footprintM, R + cloudH));
-  return columnSunTransmittance(d, muS);
+  crossing = fromCentre;
+  if (!(hSurface < cloudH && muS > 0.0f)) return false;
+  crossing += sun * raySphere(R, hSurface, muS, cloudH).x;
+  return true;
+}
+
+// The share of the sun's direct light that reaches a surface point below the layer: the column
+// at its crossing (cloudLayerCrossing), crossed at the sun's slant (the cloud's width caps it).
+// footprintM: the area the result stands for (the cover's mip level). 1 above the layer's
+// middle or at night.
+float cloudSunTransmittance(vec3 fromCentre, float R, float hSurface, vec3 sun, float muS, float footprintM) {
+  vec3 crossing;
+  if (!cloudLayerCrossing(fromCentre, R, hSurface, sun, muS, crossing)) return 1.0f;
+  float cloudH = 0.5f * (CLOUD_LAYER.x + CLOUD_LAYER.y);
+  return columnSunTransmittance(coverDensity(crossing, coverLod(footprintM, R + cloudH)), muS);
 }
 
 // The clouds' shadow on the ground as a factor of all of its light (the compose applies it to

@@ -4,7 +4,7 @@
 // the sphere through the layer's middle, over a square of the local frame around the camera's
 // nadir (sky_compose.glsl, cloudShadowTablePoint) wide enough to hold every point where the sun's
 // ray from a surface that a ray ending before the layer shows crosses that sphere
-// (SkyPass::prepare bounds it), its texels gathered toward the camera's own crossing
+// (SkyPass::cloudShadowSquare bounds it), its texels gathered toward the camera's own crossing
 // (cloudShadowTableUv says why). The ground's tiles clear of the clouds read their shadow from it
 // in one bilinear read per pixel (cloudShadowFromTable), at full resolution, where the cloud pass
 // computed it per sample with a read of the cover's cube (the three images cross-faded and

@@ -410,19 +410,17 @@ vec3 cloudShadowTablePoint(vec2 uv, float rLayer) {
 }
 
 // cloudShadow from the clouds' shadow table: the cover's density where the ray toward the sun
-// crosses the layer's middle, one bilinear read, for a surface whose footprint is below a
-// level-0 texel of the cover (the table's texels are smaller: SkyPass::prepare). It serves the
-// rays that end before the layer, whose surfaces the table spans.
+// crosses the layer's middle (cloudLayerCrossing), one bilinear read, for a surface whose
+// footprint is below a level-0 texel of the cover (the table's texels are smaller:
+// SkyPass::cloudShadowSquare). It serves the rays that end before the layer, whose surfaces the
+// table spans.
 float cloudShadowFromTable(ViewRay ray) {
-  float shadow = 1.0f;
-  float cloudH = 0.5f * (sky.clouds.x + sky.clouds.y);
+  if (!(ray.geometry && cloudsDrawn())) return 1.0f;
   SurfacePoint p = surfacePoint(ray);
-  if (ray.geometry && cloudsDrawn() && p.h < cloudH && p.muS > 0.0f) {
-    float toLayer = raySphere(sky.atmosphere.radii.x, p.h, p.muS, cloudH).x;
-    vec2 uv = cloudShadowTableUv(p.fromCentre + sky.sunLocal.xyz * toLayer);
-    shadow = cloudGroundShadow(columnSunTransmittance(textureLod(cloudShadowTable, uv, 0.0f).r, p.muS));
-  }
-  return shadow;
+  vec3 crossing;
+  if (!cloudLayerCrossing(p.fromCentre, sky.atmosphere.radii.x, p.h, sky.sunLocal.xyz, p.muS, crossing)) return 1.0f;
+  float d = textureLod(cloudShadowTable, cloudShadowTableUv(crossing), 0.0f).r;
+  return cloudGroundShadow(columnSunTransmittance(d, p.muS));
 }
 
 // The cloud layer along the view ray up to its end: the light it sends toward the camera, its

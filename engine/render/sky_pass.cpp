@@ -431,16 +431,7 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   // the deepest terrain when that is below it (basins seen past the radius sphere's horizon).
   const double groundSphere = planet_.hasOcean ? 0.0 : std::min(lowest, 0.0);
   u.surface = glm::vec4(float(lowest), planet_.hasOcean ? 1.0f : 0.0f, float(groundSphere), 0.0f);
-  if (clearCloudTiles_) {
-    // The clouds' shadow table's square: centred where the sun's ray from the camera crosses the
-    // layer's middle (on the sphere's horizon when the sun is below the camera's).
-    const double r = planet_.radiusM + view.altitudeM;
-    const double rMiddle = planet_.radiusM + 0.5 * (planet_.clouds.bottomM + planet_.clouds.topM);
-    const double mu = std::max(view.sunLocal.z, 0.0);
-    const double toLayer = -r * mu + std::sqrt(std::max(r * r * mu * mu + rMiddle * rMiddle - r * r, 0.0));
-    u.cloudShadowTable = glm::vec4(float(view.sunLocal.x * toLayer), float(view.sunLocal.y * toLayer),
-                                   float(cloudShadowHalfSideM(view, lowest)), 0.0f);
-  }
+  if (clearCloudTiles_) u.cloudShadowTable = cloudShadowSquare(view, lowest);
   // The aerial-perspective slices (shaders/sky_aerial.glsl): from inside the air, out to the
   // farthest distance at which the volume is read. That is where a ray past the ground sphere's
   // horizon leaves the air; but when nothing is drawn in the air but this body's own ground, sea
@@ -486,8 +477,15 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
 }
 
-double SkyPass::cloudShadowHalfSideM(const SkyView& view, double lowestM) const {
-  // The surfaces a ray that ends before the layer shows (the camera below its base) lie inside
+glm::vec4 SkyPass::cloudShadowSquare(const SkyView& view, double lowestM) const {
+  const double radius = planet_.radiusM;
+  const double r = radius + view.altitudeM;
+  const double rMiddle = radius + 0.5 * (planet_.clouds.bottomM + planet_.clouds.topM);
+  // The centre: where the sun's ray from the camera crosses the layer's middle (on the sphere's
+  // horizon when the sun is below the camera's).
+  const double mu = std::max(view.sunLocal.z, 0.0);
+  const double toLayer = -r * mu + std::sqrt(std::max(r * r * mu * mu + rMiddle * rMiddle - r * r, 0.0));
+  // The half side. The surfaces a ray that ends before the layer shows (the camera below its base) lie inside
   // the ball under the base and no lower than the lowest surface, on a straight ray from the
   // camera that stays above that: at most the horizon angles of the camera and of the base over
   // the lowest sphere from the nadir. The sun's ray from such a surface, at zenith angle θ there
@@ -498,18 +496,16 @@ double SkyPass::cloudShadowHalfSideM(const SkyView& view, double lowestM) const 
   // camera's own crossing: the two crossings' offsets lie along the sun's direction, each at most
   // the largest), and one edge texel more (their centres lie half a texel in).
   constexpr double kRightAngle = 0.5 * std::numbers::pi;
-  const double radius = planet_.radiusM;
   const double rLow = radius + std::min(lowestM, view.altitudeM);
   const double rBase = radius + planet_.clouds.bottomM;
-  const double rMiddle = radius + 0.5 * (planet_.clouds.bottomM + planet_.clouds.topM);
-  const double reach =
-      std::acos(std::min(rLow / (radius + view.altitudeM), 1.0)) + std::acos(std::min(rLow / rBase, 1.0));
+  const double reach = std::acos(std::min(rLow / r, 1.0)) + std::acos(std::min(rLow / rBase, 1.0));
   const double sunZenith = std::min(std::acos(std::clamp(view.sunLocal.z, -1.0, 1.0)) + reach, kRightAngle);
   const double alongSun = sunZenith - std::asin(rLow * std::sin(sunZenith) / rMiddle);
   const double halfSide = rMiddle * std::sin(std::min(reach + alongSun, kRightAngle));
   // (The last texel's centre lies at u = 1 − 1 / size, x = c + s (1 − 1 / size)².)
   const double lastCentre = 1.0 - 1.0 / double(gpu::kCloudShadowTableSize);
-  return halfSide / (lastCentre * lastCentre) * 1.001;
+  return glm::vec4(float(view.sunLocal.x * toLayer), float(view.sunLocal.y * toLayer),
+                   float(halfSide / (lastCentre * lastCentre) * 1.001), 0.0f);
 }
 
 void SkyPass::recordSkyView(VkCommandBuffer cmd, vk::GpuTimer* timer) {

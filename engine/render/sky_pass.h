@@ -216,9 +216,10 @@ class SkyPass {
   // the compose pipelines leave the cloud code out (sky.comp's kSpecClouds: lavapipe would run
   // it for every pixel) and the cloud pass is not dispatched.
   bool cloudsDrawn() const;
-  // Half the side of the clouds' shadow table's square (SkyUniforms::camera.z) for a camera below
-  // the cloud layer's base, lowestM the lowest surface a ray can end on (m above the radius).
-  double cloudShadowHalfSideM(const SkyView& view, double lowestM) const;
+  // The clouds' shadow table's square (SkyUniforms::cloudShadowTable: xy its centre in the local
+  // frame, z its half side, m) for a camera below the cloud layer's base, lowestM the lowest
+  // surface a ray can end on (m above the radius).
+  glm::vec4 cloudShadowSquare(const SkyView& view, double lowestM) const;
 
   vk::Context& context_;
   uint32_t specialization_[2][2] = {{1u, 0u}, {1u, 1u}};  // [clouds]: sky.comp's kSpecEclipses, kSpecClouds
