@@ -76,11 +76,12 @@ float aerialSliceEnd(uint k, vec2 columnStretch) {
 
 // The camera's transmittance table (shared/sky_params.h, kCameraTransmittanceDistances), from
 // inside the air: the texture coordinates of distance t along a ray of zenith cosine mu
-// (common/atmosphere.glsl, cameraTransmittanceUnit: out to the volume's farthest distance,
-// sky.aerial.y, from the ground sphere's horizon, whose cosine is sky.aerial.w). Texel centres
+// (common/atmosphere.glsl, cameraTransmittanceUnit: out to the volume's farthest distance when the
+// table was built, sky.camera.z, from the ground sphere's horizon, whose cosine was sky.aerial.w:
+// a kept table keeps its mapping, SkyPass::cameraTransmittanceBuilt). Texel centres
 // fall on the ends of each range (unitToTexel): the first column is the camera's (no air).
 vec2 cameraTransmittanceUv(float mu, float t) {
-  vec2 unit = cameraTransmittanceUnit(mu, t, sky.aerial.w, sky.aerial.y);
+  vec2 unit = cameraTransmittanceUnit(mu, t, sky.aerial.w, sky.camera.z);
   return vec2(unitToTexel(unit.x, float(kCameraTransmittanceDistances)),
               unitToTexel(unit.y, float(kCameraTransmittanceDirections)));
 }
@@ -89,7 +90,7 @@ vec2 cameraTransmittanceUv(float mu, float t) {
 vec2 cameraTransmittanceTexel(uint i, uint j) {
   return cameraTransmittanceDistanceMu(float(i) / float(kCameraTransmittanceDistances - 1u),
                                        float(j) / float(kCameraTransmittanceDirections - 1u), sky.aerial.w,
-                                       sky.aerial.y);
+                                       sky.camera.z);
 }
 
 #endif

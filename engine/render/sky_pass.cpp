@@ -360,6 +360,7 @@ void SkyPass::setSettings(const SkySettings& settings) {
   settings_ = settings;
   makePipelines();
   skyViewBuiltFor_.reset();
+  cameraTransmittanceBuiltFor_.reset();
 }
 
 void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint32_t slot) {
@@ -464,6 +465,28 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   const double horizonZenith = std::atan2(radius + std::min(groundSphere, view.altitudeM), -toHorizon);
   u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), float(horizonZenith),
                        float(std::cos(horizonZenith)));
+  // The camera's transmittance table (from inside the air): built again only when the air changed,
+  // the altitude moved beyond the sky-view table's tolerance (at most 0.5 % of the haze's scale
+  // height, 16 m at 2 km: the optical depths change by about as much), or the slices' reach by more
+  // than kCameraTransmittanceReachTolerance. A kept table is read with its own mapping. Its reach
+  // grows with the altitude (0.5 m higher at 50 m: 0.02 %); a read past it clamps to its last
+  // texel, where the rays have left the air or run at the highest surface's altitude, along
+  // 0.1 % of their length at most.
+  if (above) {
+    cameraTransmittanceBuiltFor_.reset();
+    buildCameraTransmittance_ = false;
+  } else {
+    const CameraTransmittanceInputs inputs{u.atmosphere, view.altitudeM, u.aerial.y, u.aerial.w};
+    const CameraTransmittanceInputs* kept = cameraTransmittanceBuiltFor_ ? &*cameraTransmittanceBuiltFor_ : nullptr;
+    buildCameraTransmittance_ =
+        !kept || std::memcmp(&kept->atmosphere, &inputs.atmosphere, sizeof(inputs.atmosphere)) != 0 ||
+        std::abs(inputs.altitudeM - kept->altitudeM) > skyViewAltitudeToleranceM(planet_.radiusM, kept->altitudeM) ||
+        std::abs(double(inputs.farthestM) - double(kept->farthestM)) >
+            kCameraTransmittanceReachTolerance * double(kept->farthestM);
+    if (buildCameraTransmittance_) cameraTransmittanceBuiltFor_ = inputs;
+    u.camera.z = cameraTransmittanceBuiltFor_->farthestM;
+    u.aerial.w = cameraTransmittanceBuiltFor_->muHorizon;
+  }
   // The sky-view table: built again only when its inputs moved beyond the tolerances.
   const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
   const SkyViewInputs* built = skyViewBuiltFor_ ? &*skyViewBuiltFor_ : nullptr;
@@ -560,7 +583,7 @@ void SkyPass::recordCompose(VkCommandBuffer cmd, vk::GpuTimer* timer) {
                             nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, aerialBuild_[above_ ? 1 : 0].get());
     vkCmdDispatch(cmd, (gpu::kAerialSize + group - 1) / group, (gpu::kAerialSize + group - 1) / group, 1);
-    if (!above_) {  // from above, the compose reads the volume's transmittance
+    if (buildCameraTransmittance_) {  // from inside the air, unless kept (from above, the volume's is read)
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cameraTransmittanceBuild_.get());
       vkCmdDispatch(cmd, gpu::kCameraTransmittanceDirections / gpu::kCameraTransmittanceWorkgroup, 1, 1);
     }

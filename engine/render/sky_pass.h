@@ -171,7 +171,7 @@ class SkyPass {
   // For tests: the camera's transmittance table (optical depth in rgb, row-major
   // kCameraTransmittanceDistances × kCameraTransmittanceDirections), after a frame recorded in
   // tables mode from inside the air has completed; and the last prepared frame's uniforms
-  // (aerial.y and aerial.w give the table's reach and its horizon).
+  // (camera.z and aerial.w give the table's reach and its horizon).
   std::vector<glm::vec4> readCameraTransmittance();
   const gpu::SkyUniforms& uniforms() const { return uniformData_; }
 
@@ -190,6 +190,11 @@ class SkyPass {
   static double skyViewAltitudeToleranceM(double radiusM, double altitudeM);
   // Whether the last prepared frame builds the sky-view table (else it reads the last one built).
   bool skyViewBuilt() const { return buildSkyView_; }
+  // Whether the last prepared frame builds the camera's transmittance table (from inside the air,
+  // when the air or the camera's altitude moved beyond the sky-view table's tolerance, or the
+  // slices' reach by more than kCameraTransmittanceReachTolerance; else it reads the last one).
+  bool cameraTransmittanceBuilt() const { return buildCameraTransmittance_; }
+  static constexpr double kCameraTransmittanceReachTolerance = 1e-3;
   // The last prepared frame's compose pixels (SkySettings::regions).
   const PixelRect& composeRegion() const { return composeRegion_; }
   // For tests: how many of the last frame's compose tiles were of each class (mixed, sky,
@@ -274,6 +279,18 @@ class SkyPass {
   };
   std::optional<SkyViewInputs> skyViewBuiltFor_;
   bool buildSkyView_ = true;
+  // What the camera's transmittance table was last built for (from inside the air), and whether
+  // the last prepared frame builds it. It depends on the air and the camera's altitude only; its
+  // mapping (the reach, SkyUniforms::camera.z, and the horizon's cosine, aerial.w) is the kept
+  // table's while it is kept.
+  struct CameraTransmittanceInputs {
+    gpu::AtmosphereParams atmosphere{};
+    double altitudeM = 0.0;
+    float farthestM = 0.0f;
+    float muHorizon = 0.0f;
+  };
+  std::optional<CameraTransmittanceInputs> cameraTransmittanceBuiltFor_;
+  bool buildCameraTransmittance_ = true;
   // The cloud pass's samples (setTargets makes them the targets' size; a frame uses the top-left
   // (width / scale) × (height / scale) of them, cloudScale_), in GENERAL.
   vk::Owned<vk::Image> cloudLight_;

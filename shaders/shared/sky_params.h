@@ -118,19 +118,18 @@ GPU_CONST float kSkyViewGroundShareFrom = 0.9f;
 GPU_CONST float kSkyViewGroundShareTo = 0.98f;
 GPU_CONST float kSkyViewGroundHeightFrom = 100.0f;
 GPU_CONST float kSkyViewGroundHeightTo = 400.0f;
-// The camera's transmittance table, rebuilt every frame from inside the air before the compose
+// The camera's transmittance table, built from inside the air before the compose
 // (sky_camera_transmittance.comp; common/atmosphere.glsl, cameraTransmittanceUnit, has its
-// mapping): the air's optical depth from the camera to distance t along a ray of zenith cosine mu, x by
-// distance (t out to SkyUniforms::aerial.y, gathered toward the camera), y by mu (gathered toward
-// the ground sphere's horizon). One read gives a pixel's transmittance to what it shows. Each row
-// is marched by one invocation, kCameraTransmittanceSteps midpoint steps between neighbouring
-// texels, adding up as it goes. The sizes: on a model of Earth's air (exact integrals of random
-// rays that end above the ground), the largest error of the transmittance is 0.25 of 255 from the
-// ground, 1.7 from 10 km and 5 from 30 and 60 km, on rays that end near the ground far below; it
-// comes from the filter between texels, not from the steps (four steps moved it by less than
-// 1 of 255). 256 directions halved it from 30 km up, for 0.2 ms more of the build on lavapipe
-// (a row's texels cost it about 20 ns each, the steps almost nothing) and no more than 0.2 dB
-// of the tables' agreement with the march.
+// mapping), again only when the camera's altitude or the air moved (SkyPass::cameraTransmittanceBuilt):
+// the air's optical depth from the camera to distance t along a ray of zenith cosine mu, x by
+// distance (t out to SkyUniforms::camera.z, gathered toward the camera), y by mu (gathered toward
+// the ground sphere's horizon, whose cosine is aerial.w). One read gives a pixel's transmittance to what it shows. Each
+// row is marched by one invocation, kCameraTransmittanceSteps midpoint steps between neighbouring texels, adding up as
+// it goes. The sizes: on a model of Earth's air (exact integrals of random rays that end above the ground), the largest
+// error of the transmittance is 0.25 of 255 from the ground, 1.7 from 10 km and 5 from 30 and 60 km, on rays that end
+// near the ground far below; it comes from the filter between texels, not from the steps (four steps moved it by less
+// than 1 of 255). 256 directions halved it from 30 km up, for 0.2 ms more of the build on lavapipe (a row's texels cost
+// it about 20 ns each, the steps almost nothing) and no more than 0.2 dB of the tables' agreement with the march.
 GPU_CONST uint kCameraTransmittanceDistances = 128u;
 GPU_CONST uint kCameraTransmittanceDirections = 128u;
 GPU_CONST uint kCameraTransmittanceSteps = 1u;
@@ -196,7 +195,8 @@ struct SkyUniforms {
   AtmosphereParams atmosphere;
   mat4 clipToLocal;    // clip (x, y) at depth 1 → view ray, local frame, camera at the origin
   mat4 localToPlanet;  // rotation: local → planet frame directions
-  vec4 camera;         // x: camera altitude above R (m), y: near plane (m), z: unused, w: time (s)
+  vec4 camera;         // x: camera altitude above R (m), y: near plane (m), z: the camera's transmittance
+                       // table's reach (m; aerial.y when it was built), w: time (s)
   vec4 forward;        // xyz: camera forward (local), w: view samples per pixel
   vec4 sunLocal;       // xyz: toward the sun (local), w: star brightness
   vec4 cameraPlanet;   // xyz: camera position in the planet frame (m, float: clouds only), w: 1 if clouds
@@ -214,7 +214,8 @@ struct SkyUniforms {
                  // atmosphere (each column's slices split its own stretch through the air evenly), else 0
                  // (slice k ends at distance y · ((k + 1) / kAerialSize)²); y: that farthest distance (m);
                  // z: the zenith angle of the ground sphere's horizon (rad; sky_compose.glsl,
-                 // aerialPerspective); w: its cosine (sky_aerial.glsl, cameraTransmittanceUv)
+                 // aerialPerspective); w: its cosine when the camera's transmittance table was built
+                 // (sky_aerial.glsl, cameraTransmittanceUv)
   vec4 region;   // the passes' dispatches cover only where the air or the sun can show (SkyPass::prepare,
                  // skyRegion): x, y: the compose's first pixel; z, w: the cloud pass's first sample
   vec4 cloudShadowTable;  // the clouds' shadow table's square (kSkyBindingCloudShadowTable): xy its centre (local
