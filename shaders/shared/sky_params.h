@@ -120,16 +120,18 @@ GPU_CONST float kSkyViewGroundHeightFrom = 100.0f;
 GPU_CONST float kSkyViewGroundHeightTo = 400.0f;
 // The camera's transmittance table, built from inside the air before the compose
 // (sky_camera_transmittance.comp; common/atmosphere.glsl, cameraTransmittanceUnit, has its
-// mapping), again only when the camera's altitude or the air moved (SkyPass::cameraTransmittanceBuilt):
-// the air's optical depth from the camera to distance t along a ray of zenith cosine mu, x by
-// distance (t out to SkyUniforms::camera.z, gathered toward the camera), y by mu (gathered toward
-// the ground sphere's horizon, whose cosine is aerial.w). One read gives a pixel's transmittance to what it shows. Each
-// row is marched by one invocation, kCameraTransmittanceSteps midpoint steps between neighbouring texels, adding up as
-// it goes. The sizes: on a model of Earth's air (exact integrals of random rays that end above the ground), the largest
-// error of the transmittance is 0.25 of 255 from the ground, 1.7 from 10 km and 5 from 30 and 60 km, on rays that end
-// near the ground far below; it comes from the filter between texels, not from the steps (four steps moved it by less
-// than 1 of 255). 256 directions halved it from 30 km up, for 0.2 ms more of the build on lavapipe (a row's texels cost
-// it about 20 ns each, the steps almost nothing) and no more than 0.2 dB of the tables' agreement with the march.
+// mapping), again only when the camera's altitude or the air moved
+// (SkyPass::cameraTransmittanceBuilt): the air's optical depth from the camera to distance t along
+// a ray of zenith cosine mu, x by distance (t out to SkyUniforms::camera.z, gathered toward the
+// camera), y by mu (gathered toward the ground sphere's horizon, whose cosine is aerial.w). One
+// read gives a pixel's transmittance to what it shows. Each row is marched by one invocation,
+// kCameraTransmittanceSteps midpoint steps between neighbouring texels, adding up as it goes. The
+// sizes: on a model of Earth's air (exact integrals of random rays that end above the ground), the
+// largest error of the transmittance is 0.25 of 255 from the ground, 1.7 from 10 km and 5 from 30
+// and 60 km, on rays that end near the ground far below; it comes from the filter between texels,
+// not from the steps (four steps moved it by less than 1 of 255). 256 directions halved it from
+// 30 km up, for 0.2 ms more of the build on lavapipe (a row's texels cost it about 20 ns each, the
+// steps almost nothing) and no more than 0.2 dB of the tables' agreement with the march.
 GPU_CONST uint kCameraTransmittanceDistances = 128u;
 GPU_CONST uint kCameraTransmittanceDirections = 128u;
 GPU_CONST uint kCameraTransmittanceSteps = 1u;
