@@ -2,8 +2,8 @@
 // The camera's transmittance table (issue 21, point 7; shared/sky_params.h,
 // kCameraTransmittanceDistances), built from inside the air before the cloud pass and the
 // compose, again only when the camera's altitude or the air moved (SkyPass keeps it as it keeps
-// the sky-view table, with its mapping, SkyUniforms::camera.z and aerial.w): the air's optical depth from the camera to each distance along rays of each
-// zenith cosine (common/atmosphere.glsl, cameraTransmittanceUnit, maps both). The compose reads
+// the sky-view table, with its mapping, SkyUniforms::camera.z and aerial.w): the air's optical
+// depth from the camera to each distance along rays of each zenith cosine (common/atmosphere.glsl, cameraTransmittanceUnit, maps both). The compose reads
 // a pixel's transmittance to what it shows from it in one filtered read. Each invocation marches
 // one row outward from the camera, kCameraTransmittanceSteps midpoint steps between neighbouring
 // texels, and adds up as it goes.

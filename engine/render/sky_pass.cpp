@@ -466,38 +466,39 @@ void SkyPass::prepare(const SkyView& view, uint32_t width, uint32_t height, uint
   u.aerial = glm::vec4(above ? 1.0f : 0.0f, float(std::max(toHorizon + horizonToTop, 1.0)), float(horizonZenith),
                        float(std::cos(horizonZenith)));
   // The camera's transmittance table (from inside the air): built again only when the air changed,
-  // the altitude moved beyond the sky-view table's tolerance (at most 0.5 % of the haze's scale
-  // height, 16 m at 2 km: the optical depths change by about as much), or the slices' reach by more
-  // than kCameraTransmittanceReachTolerance. A kept table is read with its own mapping. Its reach
-  // grows with the altitude (0.5 m higher at 50 m: 0.02 %); a read past it clamps to its last
-  // texel, where the rays have left the air or run at the highest surface's altitude, along
-  // 0.1 % of their length at most.
+  // the altitude moved beyond the sky-view table's tolerance (2.5 m at 50 m, 16 m at 2 km: 1.3 %
+  // of the haze's 1.2 km scale height, by which the haze's optical depths change), or the slices'
+  // reach by more than kCameraTransmittanceReachTolerance. A kept table is read with its own
+  // mapping. Its reach grows with the altitude (a tolerance higher at 50 m: 0.05 %); a read past
+  // it clamps to its last texel, where the rays have left the air or run at the highest surface's
+  // altitude, along 0.1 % of their length at most.
+  const AirAndAltitude air{u.atmosphere, view.altitudeM};
   if (above) {
     cameraTransmittanceBuiltFor_.reset();
     buildCameraTransmittance_ = false;
   } else {
-    const CameraTransmittanceInputs inputs{u.atmosphere, view.altitudeM, u.aerial.y, u.aerial.w};
+    const CameraTransmittanceInputs inputs{air, u.aerial.y, u.aerial.w};
     const CameraTransmittanceInputs* kept = cameraTransmittanceBuiltFor_ ? &*cameraTransmittanceBuiltFor_ : nullptr;
-    buildCameraTransmittance_ =
-        !kept || std::memcmp(&kept->atmosphere, &inputs.atmosphere, sizeof(inputs.atmosphere)) != 0 ||
-        std::abs(inputs.altitudeM - kept->altitudeM) > skyViewAltitudeToleranceM(planet_.radiusM, kept->altitudeM) ||
-        std::abs(double(inputs.farthestM) - double(kept->farthestM)) >
-            kCameraTransmittanceReachTolerance * double(kept->farthestM);
+    buildCameraTransmittance_ = !kept || !kept->air.serves(air, planet_.radiusM) ||
+                                std::abs(double(inputs.farthestM) - double(kept->farthestM)) >
+                                    kCameraTransmittanceReachTolerance * double(kept->farthestM);
     if (buildCameraTransmittance_) cameraTransmittanceBuiltFor_ = inputs;
     u.camera.z = cameraTransmittanceBuiltFor_->farthestM;
     u.aerial.w = cameraTransmittanceBuiltFor_->muHorizon;
   }
   // The sky-view table: built again only when its inputs moved beyond the tolerances.
-  const SkyViewInputs inputs{u.atmosphere, view.altitudeM, u.surface.z, u.sunLocal.z};
+  const SkyViewInputs inputs{air, u.surface.z, u.sunLocal.z};
   const SkyViewInputs* built = skyViewBuiltFor_ ? &*skyViewBuiltFor_ : nullptr;
-  buildSkyView_ =
-      !built || std::memcmp(&built->atmosphere, &inputs.atmosphere, sizeof(inputs.atmosphere)) != 0 ||
-      built->groundSphereM != inputs.groundSphereM ||
-      std::abs(inputs.altitudeM - built->altitudeM) > skyViewAltitudeToleranceM(planet_.radiusM, built->altitudeM) ||
-      std::abs(double(inputs.sunCosZenith) - double(built->sunCosZenith)) > kSkyViewSunTolerance;
+  buildSkyView_ = !built || !built->air.serves(air, planet_.radiusM) || built->groundSphereM != inputs.groundSphereM ||
+                  std::abs(double(inputs.sunCosZenith) - double(built->sunCosZenith)) > kSkyViewSunTolerance;
   if (buildSkyView_) skyViewBuiltFor_ = inputs;
   // Host-visible: a plain copy, no submission (the slot's previous frame has completed).
   vk::uploadBuffer(context_, *uniforms_[slot], &u, sizeof(u));
+}
+
+bool SkyPass::AirAndAltitude::serves(const AirAndAltitude& frame, double radiusM) const {
+  return std::memcmp(&atmosphere, &frame.atmosphere, sizeof(atmosphere)) == 0 &&
+         std::abs(frame.altitudeM - altitudeM) <= skyViewAltitudeToleranceM(radiusM, altitudeM);
 }
 
 glm::vec4 SkyPass::cloudShadowSquare(const SkyView& view, double lowestM) const {
@@ -508,16 +509,16 @@ glm::vec4 SkyPass::cloudShadowSquare(const SkyView& view, double lowestM) const 
   // horizon when the sun is below the camera's).
   const double mu = std::max(view.sunLocal.z, 0.0);
   const double toLayer = -r * mu + std::sqrt(std::max(r * r * mu * mu + rMiddle * rMiddle - r * r, 0.0));
-  // The half side. The surfaces a ray that ends before the layer shows (the camera below its base) lie inside
-  // the ball under the base and no lower than the lowest surface, on a straight ray from the
-  // camera that stays above that: at most the horizon angles of the camera and of the base over
+  // The half side. The surfaces a ray that ends before the layer shows (the camera below its base)
+  // lie inside the ball under the base and no lower than the lowest surface, on a straight ray from
+  // the camera that stays above that: at most the horizon angles of the camera and of the base over
   // the lowest sphere from the nadir. The sun's ray from such a surface, at zenith angle θ there
   // (at most the camera's plus that angle, and below a right angle where it is lit), crosses the
-  // layer's middle θ − asin(r sin θ / r_mid) further on (the triangle of the centre, the surface
-  // at radius r and the crossing), most from the lowest surface. The table's square holds the
-  // sphere's points out to the sum of both angles from the nadir (so also from its centre, the
-  // camera's own crossing: the two crossings' offsets lie along the sun's direction, each at most
-  // the largest), and one edge texel more (their centres lie half a texel in).
+  // layer's middle θ − asin(r sin θ / r_mid) further on (the triangle of the centre, the surface at
+  // radius r and the crossing), most from the lowest surface. The table's square holds the sphere's
+  // points out to the sum of both angles from the nadir (so also from its centre, the camera's own
+  // crossing: the two crossings' offsets lie along the sun's direction, each at most the largest),
+  // and one edge texel more (their centres lie half a texel in).
   constexpr double kRightAngle = 0.5 * std::numbers::pi;
   const double rLow = radius + std::min(lowestM, view.altitudeM);
   const double rBase = radius + planet_.clouds.bottomM;

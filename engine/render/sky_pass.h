@@ -270,10 +270,17 @@ class SkyPass {
   VkDescriptorSet tableSets_[vk::kFramesInFlight] = {};  // from tablePool_
   bool tablesInitialised_ = false;  // the aerial volume and the camera's table left UNDEFINED for GENERAL
   bool skyViewInitialised_ = false;                      // the sky-view table left UNDEFINED for GENERAL
-  // What the sky-view table was last built for, and whether the last prepared frame builds it.
-  struct SkyViewInputs {
+  // The air and the camera's altitude a table was built for (the sky-view table's and the camera's
+  // transmittance table's inputs share them): it serves a frame in the same air within
+  // skyViewAltitudeToleranceM of that altitude.
+  struct AirAndAltitude {
     gpu::AtmosphereParams atmosphere{};
     double altitudeM = 0.0;
+    bool serves(const AirAndAltitude& frame, double radiusM) const;
+  };
+  // What the sky-view table was last built for, and whether the last prepared frame builds it.
+  struct SkyViewInputs {
+    AirAndAltitude air;
     float groundSphereM = 0.0f;
     float sunCosZenith = 0.0f;
   };
@@ -284,8 +291,7 @@ class SkyPass {
   // mapping (the reach, SkyUniforms::camera.z, and the horizon's cosine, aerial.w) is the kept
   // table's while it is kept.
   struct CameraTransmittanceInputs {
-    gpu::AtmosphereParams atmosphere{};
-    double altitudeM = 0.0;
+    AirAndAltitude air;
     float farthestM = 0.0f;
     float muHorizon = 0.0f;
   };
